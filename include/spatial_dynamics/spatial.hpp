@@ -1,0 +1,10 @@
+// The spatial algebra of the seed text in one include.
+#pragma once
+
+#include "spatial_dynamics/spatial/articulated_inertia.hpp"
+#include "spatial_dynamics/spatial/cross.hpp"
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/plucker_transform.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"

@@ -1,0 +1,36 @@
+// Articulated-body inertia: a general symmetric 6×6 matrix [A B; Bᵀ C] (RBDA §7.2), used by the
+// ABA. Rigid inertia is the special case B = h×, C = m1.
+#pragma once
+
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct ArticulatedInertia {
+  Matrix6<S> matrix = Matrix6<S>::Zero();
+
+  ArticulatedInertia() = default;
+  explicit ArticulatedInertia(const Matrix6<S>& m) : matrix(m) {}
+  explicit ArticulatedInertia(const RigidInertia<S>& rigid) { assign(rigid); }
+
+  void assign(const RigidInertia<S>& rigid) {
+    const Matrix3<S> hx = skew(rigid.first_moment);
+    matrix.template topLeftCorner<3, 3>() = rigid.rotational_inertia;
+    matrix.template topRightCorner<3, 3>() = hx;
+    matrix.template bottomLeftCorner<3, 3>() = -hx;
+    matrix.template bottomRightCorner<3, 3>() = rigid.mass * Matrix3<S>::Identity();
+  }
+
+  ForceVector<S> operator*(const MotionVector<S>& v) const {
+    return {matrix.template topLeftCorner<3, 3>() * v.angular + matrix.template topRightCorner<3, 3>() * v.linear,
+            matrix.template bottomLeftCorner<3, 3>() * v.angular + matrix.template bottomRightCorner<3, 3>() * v.linear};
+  }
+
+  ArticulatedInertia& operator+=(const ArticulatedInertia& o) { matrix += o.matrix; return *this; }
+};
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,27 @@
+// Fixed-size Eigen aliases shared by every layer, templated on the scalar.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace spatial_dynamics {
+
+template <class S> using Vector3 = Eigen::Matrix<S, 3, 1>;
+template <class S> using Matrix3 = Eigen::Matrix<S, 3, 3>;
+template <class S> using Vector6 = Eigen::Matrix<S, 6, 1>;
+template <class S> using Matrix6 = Eigen::Matrix<S, 6, 6>;
+template <class S> using VectorX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+template <class S> using MatrixX = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+template <class S> using Matrix6X = Eigen::Matrix<S, 6, Eigen::Dynamic>;
+
+/// The 3-D cross-product matrix: skew(a) * b == a.cross(b) (the "a×" of the seed text).
+template <class S>
+Matrix3<S> skew(const Vector3<S>& a) {
+  Matrix3<S> m;
+  m << S(0), -a.z(), a.y(),
+       a.z(), S(0), -a.x(),
+       -a.y(), a.x(), S(0);
+  return m;
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,55 @@
+// Spatial force vector f = (n_O; f) in Plücker coordinates, moment about the frame origin
+// first (seed text, eq. 6). A distinct type from MotionVector.
+#pragma once
+
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct ForceVector {
+  Vector3<S> angular;  // n_O: moment about the frame origin
+  Vector3<S> linear;   // f: resultant force
+
+  ForceVector() = default;
+  ForceVector(const Vector3<S>& angular_part, const Vector3<S>& linear_part)
+      : angular(angular_part), linear(linear_part) {}
+  explicit ForceVector(const Vector6<S>& f) : angular(f.template head<3>()), linear(f.template tail<3>()) {}
+
+  static ForceVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
+
+  Vector6<S> toVector() const {
+    Vector6<S> f;
+    f << angular, linear;
+    return f;
+  }
+
+  template <class T>
+  ForceVector<T> cast() const {
+    return {angular.template cast<T>(), linear.template cast<T>()};
+  }
+
+  ForceVector& operator+=(const ForceVector& o) { angular += o.angular; linear += o.linear; return *this; }
+  ForceVector& operator-=(const ForceVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
+  ForceVector operator+(const ForceVector& o) const { return {angular + o.angular, linear + o.linear}; }
+  ForceVector operator-(const ForceVector& o) const { return {angular - o.angular, linear - o.linear}; }
+  ForceVector operator-() const { return {-angular, -linear}; }
+  ForceVector operator*(const S& k) const { return {angular * k, linear * k}; }
+};
+
+template <class S>
+ForceVector<S> operator*(const S& k, const ForceVector<S>& f) { return f * k; }
+
+/// Scalar product m · f = ω·n_O + v_O·f: the power delivered by f on a body moving with m
+/// (seed text, eq. 7). Defined only between a motion and a force.
+template <class S>
+S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
+  return m.angular.dot(f.angular) + m.linear.dot(f.linear);
+}
+template <class S>
+S dot(const ForceVector<S>& f, const MotionVector<S>& m) {
+  return dot(m, f);
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,44 @@
+// Spatial motion vector m = (ω; v_O) in Plücker coordinates, angular part first
+// (seed text, eq. 5). A distinct type from ForceVector so that adding a force to a
+// velocity does not compile.
+#pragma once
+
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct MotionVector {
+  Vector3<S> angular;  // ω
+  Vector3<S> linear;   // v_O: velocity of the body-fixed point at the frame origin
+
+  MotionVector() = default;
+  MotionVector(const Vector3<S>& angular_part, const Vector3<S>& linear_part)
+      : angular(angular_part), linear(linear_part) {}
+  explicit MotionVector(const Vector6<S>& v) : angular(v.template head<3>()), linear(v.template tail<3>()) {}
+
+  static MotionVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
+
+  Vector6<S> toVector() const {
+    Vector6<S> v;
+    v << angular, linear;
+    return v;
+  }
+
+  template <class T>
+  MotionVector<T> cast() const {
+    return {angular.template cast<T>(), linear.template cast<T>()};
+  }
+
+  MotionVector& operator+=(const MotionVector& o) { angular += o.angular; linear += o.linear; return *this; }
+  MotionVector& operator-=(const MotionVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
+  MotionVector operator+(const MotionVector& o) const { return {angular + o.angular, linear + o.linear}; }
+  MotionVector operator-(const MotionVector& o) const { return {angular - o.angular, linear - o.linear}; }
+  MotionVector operator-() const { return {-angular, -linear}; }
+  MotionVector operator*(const S& k) const { return {angular * k, linear * k}; }
+};
+
+template <class S>
+MotionVector<S> operator*(const S& k, const MotionVector<S>& m) { return m * k; }
+
+}  // namespace spatial_dynamics

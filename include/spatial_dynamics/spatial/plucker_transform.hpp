@@ -1,0 +1,130 @@
+// Plücker coordinate transform ^BX_A from frame A to frame B, stored as (E, r) and never as a
+// 6×6 matrix on the hot path (seed text, eqs. 11–12):
+//   E  rotates A coordinates into B coordinates,
+//   r  is the position of B's origin relative to A's, in A coordinates.
+//   ^BX_A  = [ E      0 ]        ^BX_A* = [ E   −E r× ]  = (^BX_A)^-T   (eq. 2)
+//            [ −E r×  E ]                 [ 0    E    ]
+#pragma once
+
+#include "spatial_dynamics/spatial/articulated_inertia.hpp"
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct PluckerTransform {
+  Matrix3<S> E = Matrix3<S>::Identity();
+  Vector3<S> r = Vector3<S>::Zero();
+
+  PluckerTransform() = default;
+  PluckerTransform(const Matrix3<S>& rotation, const Vector3<S>& translation) : E(rotation), r(translation) {}
+
+  static PluckerTransform Identity() { return PluckerTransform(); }
+
+  /// From the pose of frame B in frame A: B's axes in A coordinates (R) and B's origin (p).
+  static PluckerTransform FromPose(const Matrix3<S>& R, const Vector3<S>& p) { return {R.transpose(), p}; }
+
+  /// Pose of B in A: rotation (B's axes in A coordinates) and position of B's origin.
+  Matrix3<S> rotation() const { return E.transpose(); }
+  const Vector3<S>& translation() const { return r; }
+
+  // ---- motions: X m = (E ω ; E (v − r×ω))   (eq. 11) -------------------------------------
+  MotionVector<S> apply(const MotionVector<S>& m) const {
+    return {E * m.angular, E * (m.linear - r.cross(m.angular))};
+  }
+  /// X^-1 m = (Eᵀ ω ; Eᵀ v + r × Eᵀ ω)
+  MotionVector<S> applyInverse(const MotionVector<S>& m) const {
+    const Vector3<S> w = E.transpose() * m.angular;
+    return {w, E.transpose() * m.linear + r.cross(w)};
+  }
+
+  // ---- forces: X* f = (E (n − r×f) ; E f)   (eq. 12) ------------------------------------
+  ForceVector<S> apply(const ForceVector<S>& f) const {
+    return {E * (f.angular - r.cross(f.linear)), E * f.linear};
+  }
+  /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
+  ForceVector<S> applyInverse(const ForceVector<S>& f) const {
+    const Vector3<S> lin = E.transpose() * f.linear;
+    return {E.transpose() * f.angular + r.cross(lin), lin};
+  }
+
+  // ---- rigid inertias: I_B = X* I_A X^-1   (eq. 26) ---------------------------------------
+  // Shifting the reference point by r: h' = h − m r, Ī' = Ī_O + h×r× + r×h× − m r×r×,
+  // then rotating: h_B = E h', Ī_B = E Ī' Eᵀ. No division by the mass, so massless bodies work.
+  RigidInertia<S> apply(const RigidInertia<S>& I) const {
+    const Matrix3<S> rx = skew(r);
+    const Matrix3<S> hx = skew(I.first_moment);
+    const Matrix3<S> shifted = I.rotational_inertia + hx * rx + rx * hx - I.mass * rx * rx;
+    return RigidInertia<S>(I.mass, E * (I.first_moment - I.mass * r), E * shifted * E.transpose());
+  }
+  /// I_A = Xᵀ I_B X: the inverse of apply(RigidInertia).
+  RigidInertia<S> applyInverse(const RigidInertia<S>& I) const {
+    const Vector3<S> h = E.transpose() * I.first_moment;  // first moment about B's origin, A axes
+    const Matrix3<S> rotated = E.transpose() * I.rotational_inertia * E;
+    const Matrix3<S> rx = skew(r);
+    const Matrix3<S> hx = skew(h);
+    return RigidInertia<S>(I.mass, h + I.mass * r, rotated - hx * rx - rx * hx - I.mass * rx * rx);
+  }
+
+  /// Xᵀ Iᴬ X for an articulated inertia [A B; Bᵀ C] given in B coordinates, with
+  /// A' = Eᵀ A E etc.:  [A' − B'r× + r×B'ᵀ − r×C'r×,  B' + r×C' ;  B'ᵀ − C'r×,  C'].
+  ArticulatedInertia<S> applyInverse(const ArticulatedInertia<S>& Ia) const {
+    const Matrix3<S> Et = E.transpose();
+    const Matrix3<S> A = Et * Ia.matrix.template topLeftCorner<3, 3>() * E;
+    const Matrix3<S> B = Et * Ia.matrix.template topRightCorner<3, 3>() * E;
+    const Matrix3<S> C = Et * Ia.matrix.template bottomRightCorner<3, 3>() * E;
+    const Matrix3<S> rx = skew(r);
+    const Matrix3<S> Brx = B * rx;
+    const Matrix3<S> rxC = rx * C;
+    ArticulatedInertia<S> out;
+    out.matrix.template topLeftCorner<3, 3>() = A - Brx - Brx.transpose() - rxC * rx;
+    out.matrix.template topRightCorner<3, 3>() = B + rxC;
+    out.matrix.template bottomLeftCorner<3, 3>() = (B + rxC).transpose();
+    out.matrix.template bottomRightCorner<3, 3>() = C;
+    return out;
+  }
+
+  // ---- composition and inverse ----------------------------------------------------------
+  /// ^CX_A = ^CX_B ^BX_A:  E = E_CB E_BA,  r = r_BA + E_BAᵀ r_CB.
+  PluckerTransform operator*(const PluckerTransform& BA) const {
+    return {E * BA.E, BA.r + BA.E.transpose() * r};
+  }
+  /// ^AX_B = (^BX_A)^-1:  (Eᵀ, −E r).
+  PluckerTransform inverse() const { return {E.transpose(), -(E * r)}; }
+
+  // ---- 6×6 forms (tests, not the hot path) ---------------------------------------------------
+  Matrix6<S> toMotionMatrix() const {
+    Matrix6<S> X = Matrix6<S>::Zero();
+    X.template topLeftCorner<3, 3>() = E;
+    X.template bottomLeftCorner<3, 3>() = -E * skew(r);
+    X.template bottomRightCorner<3, 3>() = E;
+    return X;
+  }
+  Matrix6<S> toForceMatrix() const {
+    Matrix6<S> X = Matrix6<S>::Zero();
+    X.template topLeftCorner<3, 3>() = E;
+    X.template topRightCorner<3, 3>() = -E * skew(r);
+    X.template bottomRightCorner<3, 3>() = E;
+    return X;
+  }
+
+  template <class T>
+  PluckerTransform<T> cast() const {
+    return {E.template cast<T>(), r.template cast<T>()};
+  }
+};
+
+/// Rotation matrix E of a coordinate transform rotating by angle θ about unit axis a:
+/// E = rot(a, θ)ᵀ = cos θ 1 − sin θ a× + (1 − cos θ) a aᵀ (RBDA eq. 2.24, transposed).
+template <class S>
+Matrix3<S> coordinate_rotation(const Vector3<S>& axis, const S& angle) {
+  using std::cos;
+  using std::sin;
+  const S c = cos(angle), s = sin(angle);
+  return c * Matrix3<S>::Identity() - s * skew(axis) + (S(1) - c) * axis * axis.transpose();
+}
+
+}  // namespace spatial_dynamics

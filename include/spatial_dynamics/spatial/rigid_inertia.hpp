@@ -1,0 +1,109 @@
+// Rigid-body spatial inertia stored as its ten parameters: mass m, first moment of mass
+// h = m·c, and the rotational inertia Ī_O about the frame origin (seed text, eq. 25):
+//   I = [ Ī_O   h× ]      Ī_O = Ī_c + m c× c×ᵀ
+//       [ -h×   m1 ]
+#pragma once
+
+#include "spatial_dynamics/spatial/cross.hpp"
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct RigidInertia {
+  S mass{0};
+  Vector3<S> first_moment = Vector3<S>::Zero();          // h = m c
+  Matrix3<S> rotational_inertia = Matrix3<S>::Zero();    // Ī_O, about the frame origin
+
+  RigidInertia() = default;
+  RigidInertia(const S& m, const Vector3<S>& h, const Matrix3<S>& inertia_about_origin)
+      : mass(m), first_moment(h), rotational_inertia(inertia_about_origin) {}
+
+  static RigidInertia Zero() { return RigidInertia(); }
+
+  /// From mass, centre of mass c and rotational inertia Ī_c about c (eq. 25).
+  static RigidInertia FromMassCenterInertia(const S& m, const Vector3<S>& c, const Matrix3<S>& inertia_about_com) {
+    const Matrix3<S> cx = skew(c);
+    return RigidInertia(m, m * c, inertia_about_com - m * cx * cx);
+  }
+
+  /// Centre of mass; undefined (division by zero) for a massless body.
+  Vector3<S> centerOfMass() const { return first_moment / mass; }
+
+  /// Rotational inertia about the centre of mass, Ī_c = Ī_O - m c× c×ᵀ (eq. 25 solved for Ī_c).
+  Matrix3<S> inertiaAboutCenterOfMass() const {
+    const Matrix3<S> hx = skew(first_moment);
+    return rotational_inertia + hx * hx / mass;
+  }
+
+  /// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25 applied to a motion vector)
+  ForceVector<S> operator*(const MotionVector<S>& v) const {
+    return {rotational_inertia * v.angular + first_moment.cross(v.linear),
+            mass * v.linear - first_moment.cross(v.angular)};
+  }
+
+  /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
+  RigidInertia& operator+=(const RigidInertia& o) {
+    mass += o.mass;
+    first_moment += o.first_moment;
+    rotational_inertia += o.rotational_inertia;
+    return *this;
+  }
+  RigidInertia operator+(const RigidInertia& o) const {
+    RigidInertia r = *this;
+    r += o;
+    return r;
+  }
+
+  /// The 6×6 matrix of eq. (25).
+  Matrix6<S> toMatrix() const {
+    Matrix6<S> m;
+    const Matrix3<S> hx = skew(first_moment);
+    m.template topLeftCorner<3, 3>() = rotational_inertia;
+    m.template topRightCorner<3, 3>() = hx;
+    m.template bottomLeftCorner<3, 3>() = -hx;
+    m.template bottomRightCorner<3, 3>() = mass * Matrix3<S>::Identity();
+    return m;
+  }
+
+  template <class T>
+  RigidInertia<T> cast() const {
+    return RigidInertia<T>(T(mass), first_moment.template cast<T>(), rotational_inertia.template cast<T>());
+  }
+};
+
+/// Momentum of a rigid body, h = I v (eq. 23).
+template <class S>
+ForceVector<S> momentum(const RigidInertia<S>& inertia, const MotionVector<S>& v) {
+  return inertia * v;
+}
+
+/// Kinetic energy T = ½ v · I v (eq. 28).
+template <class S>
+S kinetic_energy(const RigidInertia<S>& inertia, const MotionVector<S>& v) {
+  return dot(v, inertia * v) / S(2);
+}
+
+/// Equation of motion of a rigid body: f = I a + v ×* I v (eq. 29).
+template <class S>
+ForceVector<S> equation_of_motion(const RigidInertia<S>& inertia, const MotionVector<S>& v, const MotionVector<S>& a) {
+  return inertia * a + cross(v, inertia * v);
+}
+
+/// Gravity force on a rigid body, f_g = I a_g, with a_g = (0; g) the gravitational acceleration.
+template <class S>
+ForceVector<S> gravity_force(const RigidInertia<S>& inertia, const Vector3<S>& g) {
+  return inertia * MotionVector<S>(Vector3<S>::Zero(), g);
+}
+
+/// Time derivative of a body's inertia expressed in fixed coordinates while the body moves with
+/// velocity v: d/dt I = v ×* I − I v×   (eq. 27).
+template <class S>
+Matrix6<S> inertia_time_derivative(const RigidInertia<S>& inertia, const MotionVector<S>& v) {
+  const Matrix6<S> I = inertia.toMatrix();
+  return force_cross_matrix(v) * I - I * motion_cross_matrix(v);
+}
+
+}  // namespace spatial_dynamics
