@@ -1,0 +1,65 @@
+// Every buffer the algorithms need, allocated once from a Model (DESIGN.md, layer 2). A Data
+// belongs to one thread; algorithm calls write into it and never allocate.
+#pragma once
+
+#include <vector>
+
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/articulated_inertia.hpp"
+#include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/plucker_transform.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct Data {
+  // Kinematics, per body.
+  std::vector<PluckerTransform<S>> X_up;    // ^iX_λ(i) = X_J(q_i) X_tree(i)
+  std::vector<PluckerTransform<S>> X_base;  // ^iX_0: base coordinates → body i coordinates
+  std::vector<PluckerTransform<S>> X_frame_base;  // ^FX_0 for every model frame
+  std::vector<MotionVector<S>> v;           // body velocities (body coordinates)
+  std::vector<MotionVector<S>> a;           // body accelerations (bias-free in RNEA, c-free in ABA)
+  std::vector<MotionVector<S>> c;           // velocity-product accelerations v_i × S_i q̇_i (ABA)
+  std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
+
+  // ABA.
+  std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
+  std::vector<Matrix6<S>> U;                // Iᴬ S (first nv columns used)
+  std::vector<Matrix6<S>> D_inv;            // (Sᵀ Iᴬ S)^-1 (top-left nv × nv block used)
+  std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
+
+  // CRBA.
+  std::vector<RigidInertia<S>> Ic;          // composite inertias
+
+  // Results.
+  VectorX<S> tau;     // rnea output
+  VectorX<S> qdd;     // aba output
+  MatrixX<S> M;       // crba output (both triangles)
+  Matrix6X<S> J;      // frame_jacobian output
+
+  // Zero inputs for the RNEA special cases (gravity torques, nonlinear effects).
+  VectorX<S> zero_v;
+
+  explicit Data(const Model<S>& model)
+      : X_up(model.nbodies()),
+        X_base(model.nbodies()),
+        X_frame_base(model.frames.size()),
+        v(model.nbodies(), MotionVector<S>::Zero()),
+        a(model.nbodies(), MotionVector<S>::Zero()),
+        c(model.nbodies(), MotionVector<S>::Zero()),
+        f(model.nbodies(), ForceVector<S>::Zero()),
+        IA(model.nbodies()),
+        U(model.nbodies(), Matrix6<S>::Zero()),
+        D_inv(model.nbodies(), Matrix6<S>::Zero()),
+        u(model.nbodies(), Vector6<S>::Zero()),
+        Ic(model.nbodies()),
+        tau(VectorX<S>::Zero(model.nv)),
+        qdd(VectorX<S>::Zero(model.nv)),
+        M(MatrixX<S>::Zero(model.nv, model.nv)),
+        J(Matrix6X<S>::Zero(6, model.nv)),
+        zero_v(VectorX<S>::Zero(model.nv)) {}
+};
+
+}  // namespace spatial_dynamics

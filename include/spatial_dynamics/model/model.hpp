@@ -1,0 +1,100 @@
+// The immutable kinematic tree (DESIGN.md, layer 2). Body 0 is the fixed base: the URDF root
+// link (and everything fixed to it) for a fixed-base model, an empty "universe" for a floating
+// one. Bodies 1..N each have one joint connecting them to parent[i] < i, so index order is a
+// topological order. Plain data, like spatial_v2's model struct.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "spatial_dynamics/model/frame.hpp"
+#include "spatial_dynamics/model/joint.hpp"
+#include "spatial_dynamics/spatial/plucker_transform.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"
+
+namespace spatial_dynamics {
+
+template <class S>
+struct Model {
+  int nq = 0;  // configuration size (a free root adds 7)
+  int nv = 0;  // velocity size = number of degrees of freedom (a free root adds 6)
+  bool floating_base = false;
+
+  // Per body, index 0 = fixed base. Entries 0 of joints/X_tree/joint_names are unused.
+  std::vector<int> parent;
+  std::vector<Joint<S>> joints;
+  std::vector<PluckerTransform<S>> X_tree;  // ^{J_i}X_{parent}: parent body → joint i frame
+  std::vector<RigidInertia<S>> inertia;     // body inertia in body coordinates (eq. 25)
+  std::vector<std::string> body_names;      // the URDF link that defines each body's frame
+  std::vector<std::string> joint_names;
+
+  std::vector<Frame<S>> frames;  // every URDF link, in URDF tree order
+
+  Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  // in base coordinates
+
+  int nbodies() const { return static_cast<int>(parent.size()); }
+
+  /// Index of the frame called `name`; throws std::out_of_range naming it when unknown.
+  int frameIndex(const std::string& name) const {
+    const auto it = frame_index_.find(name);
+    if (it == frame_index_.end()) throw std::out_of_range("unknown frame '" + name + "'");
+    return it->second;
+  }
+  bool hasFrame(const std::string& name) const { return frame_index_.count(name) != 0; }
+
+  /// Body whose joint is called `name`; throws std::out_of_range naming it when unknown.
+  int jointBody(const std::string& name) const {
+    const auto it = joint_index_.find(name);
+    if (it == joint_index_.end()) throw std::out_of_range("unknown joint '" + name + "'");
+    return it->second;
+  }
+  bool hasJoint(const std::string& name) const { return joint_index_.count(name) != 0; }
+
+  /// Names of the velocity coordinates, in order (a free root contributes six).
+  std::vector<std::string> velocityNames() const {
+    std::vector<std::string> names;
+    for (int i = 1; i < nbodies(); ++i) {
+      if (joints[i].type == JointType::Free) {
+        for (const char* c : {"wx", "wy", "wz", "vx", "vy", "vz"}) names.push_back(joint_names[i] + "/" + c);
+      } else {
+        names.push_back(joint_names[i]);
+      }
+    }
+    return names;
+  }
+
+  /// Rebuilds the name lookups; the model builder calls it once, after filling the vectors.
+  void finalize() {
+    frame_index_.clear();
+    joint_index_.clear();
+    for (int f = 0; f < static_cast<int>(frames.size()); ++f) frame_index_[frames[f].name] = f;
+    for (int i = 1; i < nbodies(); ++i) joint_index_[joint_names[i]] = i;
+  }
+
+  /// The same model in another scalar type (e.g. a high-precision reference).
+  template <class T>
+  Model<T> cast() const {
+    Model<T> m;
+    m.nq = nq;
+    m.nv = nv;
+    m.floating_base = floating_base;
+    m.parent = parent;
+    for (const auto& j : joints) m.joints.push_back(j.template cast<T>());
+    for (const auto& x : X_tree) m.X_tree.push_back(x.template cast<T>());
+    for (const auto& in : inertia) m.inertia.push_back(in.template cast<T>());
+    m.body_names = body_names;
+    m.joint_names = joint_names;
+    for (const auto& f : frames) m.frames.push_back(f.template cast<T>());
+    m.gravity = gravity.template cast<T>();
+    m.finalize();
+    return m;
+  }
+
+ private:
+  std::unordered_map<std::string, int> frame_index_;
+  std::unordered_map<std::string, int> joint_index_;
+};
+
+}  // namespace spatial_dynamics
