@@ -1,0 +1,9 @@
+// Every algorithm in one include.
+#pragma once
+
+#include "spatial_dynamics/algorithms/aba.hpp"
+#include "spatial_dynamics/algorithms/crba.hpp"
+#include "spatial_dynamics/algorithms/energy.hpp"
+#include "spatial_dynamics/algorithms/jacobian.hpp"
+#include "spatial_dynamics/algorithms/kinematics.hpp"
+#include "spatial_dynamics/algorithms/rnea.hpp"

@@ -1,0 +1,115 @@
+// Articulated-body algorithm, q̈ = FD(q, q̇, τ, f_ext)   (RBDA Table 7.1).
+// A joint whose subtree has no inertia along its motion (D = Sᵀ Iᴬ S = 0, e.g. a massless leaf)
+// makes forward dynamics undefined: the call fails with a message naming that joint.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+
+namespace spatial_dynamics {
+namespace detail {
+
+template <class S>
+[[noreturn]] void throw_singular_joint(const Model<S>& model, int i) {
+  throw std::domain_error("joint '" + model.joint_names[i] +
+                          "': its subtree has no inertia along the joint's motion (Sᵀ Iᴬ S = 0, e.g. a massless "
+                          "leaf link), so forward dynamics is undefined");
+}
+
+template <class S>
+const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                           const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
+                           const ForceVector<S>* f_ext) {
+  using std::abs;
+  check_length("q", q.size(), model.nq);
+  check_length("velocity", qd.size(), model.nv);
+  check_length("effort", tau.size(), model.nv);
+  const int n = model.nbodies();
+
+  // Pass 1 (outward): velocities, velocity-product accelerations, rigid bias forces.
+  data.v[0] = MotionVector<S>::Zero();
+  for (int i = 1; i < n; ++i) {
+    const Joint<S>& j = model.joints[i];
+    joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
+    const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
+    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;              // v_i = X v_λ + S q̇
+    data.c[i] = cross(data.v[i], vJ);                                           // c_i = v_i × S q̇
+    data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
+    data.f[i] = cross(data.v[i], model.inertia[i] * data.v[i]);                 // pᴬ_i = v ×* I v
+    if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext
+  }
+
+  // Pass 2 (inward): articulated inertias and bias forces.
+  for (int i = n - 1; i >= 1; --i) {
+    const Joint<S>& j = model.joints[i];
+    const int lambda = model.parent[i];
+    const Matrix6<S>& IA = data.IA[i].matrix;
+    const Vector6<S> pA = data.f[i].toVector();
+    if (j.nv == 1) {
+      const Vector6<S> U = inertia_times_subspace(j, IA);                       // U = Iᴬ S
+      const S D = joint_project(j, U);                                           // D = Sᵀ U
+      if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * IA.cwiseAbs().maxCoeff())) throw_singular_joint(model, i);
+      const S u = tau[j.idx_v] - joint_project(j, pA);                           // u = τ − Sᵀ pᴬ
+      data.U[i].col(0) = U;
+      data.D_inv[i](0, 0) = S(1) / D;
+      data.u[i][0] = u;
+      if (lambda > 0) {
+        ArticulatedInertia<S> Ia(IA - U * (U.transpose() / D));                  // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
+        const Vector6<S> pa = pA + Ia.matrix * data.c[i].toVector() + U * (u / D);  // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
+        data.IA[lambda] += data.X_up[i].applyInverse(Ia);                        // Iᴬ_λ += Xᵀ Iᵃ X
+        data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
+      }
+    } else {  // free joint (always a child of the fixed base): S = 1, U = D = Iᴬ
+      const Eigen::LLT<Matrix6<S>> llt(IA);
+      if (llt.info() != Eigen::Success) throw_singular_joint(model, i);
+      data.U[i] = IA;
+      data.D_inv[i] = llt.solve(Matrix6<S>::Identity());
+      data.u[i] = tau.template segment<6>(j.idx_v) - pA;
+    }
+  }
+
+  // Pass 3 (outward): accelerations.
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);             // a_0 = −a_g
+  for (int i = 1; i < n; ++i) {
+    const Joint<S>& j = model.joints[i];
+    const MotionVector<S> a_prime = data.X_up[i].apply(data.a[model.parent[i]]) + data.c[i];
+    const Vector6<S> ap = a_prime.toVector();
+    if (j.nv == 1) {
+      const S qdd = data.D_inv[i](0, 0) * (data.u[i][0] - data.U[i].col(0).dot(ap));  // q̈ = D⁻¹(u − Uᵀ a')
+      data.qdd[j.idx_v] = qdd;
+      data.a[i] = a_prime + joint_motion(j, &qdd);                                    // a_i = a' + S q̈
+    } else {
+      const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);
+      data.qdd.template segment<6>(j.idx_v) = qdd;
+      data.a[i] = a_prime + MotionVector<S>(qdd);
+    }
+  }
+  return data.qdd;
+}
+
+}  // namespace detail
+
+/// Joint accelerations q̈ produced by joint forces τ at (q, q̇) under gravity. Result in data.qdd.
+template <class S>
+const VectorX<S>& aba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                      const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
+  return detail::aba_impl(model, data, q, qd, tau, static_cast<const ForceVector<S>*>(nullptr));
+}
+
+/// As above with external forces f_ext[i] acting on body i (body coordinates; entry 0 unused).
+template <class S>
+const VectorX<S>& aba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                      const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
+                      const std::vector<ForceVector<S>>& f_ext) {
+  detail::check_external_forces(model, f_ext);
+  return detail::aba_impl(model, data, q, qd, tau, f_ext.data());
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,35 @@
+// Frame Jacobian J(q) (6 × nv): the spatial velocity of a frame is J q̇. Column block of an
+// ancestor joint j is ^FX_j S_j; other columns are zero (RBDA §4.x, eq. for J = Σ ^FX_j S_j).
+#pragma once
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/algorithms/kinematics.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+
+namespace spatial_dynamics {
+
+enum class ReferenceFrame {
+  Local,        // frame coordinates, about the frame origin
+  RootAligned,  // axes of the base (root) frame, about the frame origin
+};
+
+/// Jacobian of model frame `frame` at q, in data.J.
+template <class S>
+const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, int frame,
+                                  ReferenceFrame reference) {
+  forward_kinematics(model, data, q);
+  data.J.setZero();
+  PluckerTransform<S> X_F0 = data.X_frame_base[frame];
+  if (reference == ReferenceFrame::RootAligned) X_F0 = PluckerTransform<S>(X_F0.E.transpose(), Vector3<S>::Zero()) * X_F0;
+  for (int j = model.frames[frame].body; j > 0; j = model.parent[j]) {
+    const PluckerTransform<S> X_Fj = X_F0 * data.X_base[j].inverse();        // ^FX_j = ^FX_0 (^jX_0)^-1
+    const Joint<S>& joint = model.joints[j];
+    for (int k = 0; k < joint.nv; ++k)
+      data.J.col(joint.idx_v + k) = X_Fj.apply(joint_subspace_column(joint, k)).toVector();
+  }
+  return data.J;
+}
+
+}  // namespace spatial_dynamics

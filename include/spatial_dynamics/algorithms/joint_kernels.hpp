@@ -1,0 +1,147 @@
+// Per-joint arithmetic: the joint transform X_J(q) composed with X_tree, the motion subspace S
+// and its transpose. Axis-aligned revolute joints rotate two rows of E instead of multiplying
+// 3×3 matrices; axis-aligned projections read one component instead of a dot product.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/plucker_transform.hpp"
+
+namespace spatial_dynamics {
+namespace detail {
+
+/// a · x, reading one component for an axis-aligned joint.
+template <class S>
+inline S along_axis(const Joint<S>& j, const Vector3<S>& x) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return x.x();
+    case AxisKind::Y: return x.y();
+    case AxisKind::Z: return x.z();
+    default: return j.axis.dot(x);
+  }
+}
+
+/// k · a.
+template <class S>
+inline Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return Vector3<S>(k, S(0), S(0));
+    case AxisKind::Y: return Vector3<S>(S(0), k, S(0));
+    case AxisKind::Z: return Vector3<S>(S(0), S(0), k);
+    default: return j.axis * k;
+  }
+}
+
+/// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
+/// for a coordinate rotation about the remaining axis.
+template <class S>
+inline void rotate_rows(Matrix3<S>& E, int m, int n, const S& c, const S& s) {
+  const Vector3<S> rm = E.row(m).transpose();
+  const Vector3<S> rn = E.row(n).transpose();
+  E.row(m) = (c * rm + s * rn).transpose();
+  E.row(n) = (c * rn - s * rm).transpose();
+}
+
+}  // namespace detail
+
+/// ^iX_λ(i) = X_J(q_i) X_tree(i)   (RBDA Table 4.1 joint models; eq. 4.x composition).
+/// `q` points at the joint's first configuration coordinate.
+template <class S>
+inline void joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+  using std::cos;
+  using std::sin;
+  const Joint<S>& j = model.joints[i];
+  const PluckerTransform<S>& Xt = model.X_tree[i];
+  switch (j.type) {
+    case JointType::Revolute: {
+      const S c = cos(q[0]), s = sin(q[0]);
+      X.r = Xt.r;
+      X.E = Xt.E;
+      switch (j.axis_kind) {
+        case AxisKind::X: detail::rotate_rows(X.E, 1, 2, c, s); break;
+        case AxisKind::Y: detail::rotate_rows(X.E, 2, 0, c, s); break;
+        case AxisKind::Z: detail::rotate_rows(X.E, 0, 1, c, s); break;
+        default: X.E = coordinate_rotation(j.axis, q[0]) * Xt.E; break;
+      }
+      return;
+    }
+    case JointType::Prismatic:
+      X.E = Xt.E;
+      X.r = Xt.r + Xt.E.transpose() * detail::scaled_axis(j, q[0]);
+      return;
+    case JointType::Free: {
+      // q = (x y z qx qy qz qw): the base pose in its parent; X_J = (Rᵀ, p).
+      const Eigen::Quaternion<S> quat(q[6], q[3], q[4], q[5]);
+      using std::abs;
+      if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
+        throw std::invalid_argument("joint '" + model.joint_names[i] +
+                                    "': the quaternion (q[" + std::to_string(j.idx_q + 3) + ".." +
+                                    std::to_string(j.idx_q + 6) + "]) is not of unit norm");
+      const Vector3<S> p(q[0], q[1], q[2]);
+      X.E = quat.toRotationMatrix().transpose() * Xt.E;
+      X.r = Xt.r + Xt.E.transpose() * p;
+      return;
+    }
+  }
+}
+
+/// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.
+template <class S>
+inline MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {
+  switch (j.type) {
+    case JointType::Revolute: return {detail::scaled_axis(j, qd[0]), Vector3<S>::Zero()};
+    case JointType::Prismatic: return {Vector3<S>::Zero(), detail::scaled_axis(j, qd[0])};
+    default: return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
+  }
+}
+
+/// Column k of the motion subspace S.
+template <class S>
+inline MotionVector<S> joint_subspace_column(const Joint<S>& j, int k) {
+  if (j.type == JointType::Free) {
+    Vector6<S> e = Vector6<S>::Zero();
+    e[k] = S(1);
+    return MotionVector<S>(e);
+  }
+  const Vector3<S> axis = detail::scaled_axis(j, S(1));
+  return j.type == JointType::Revolute ? MotionVector<S>(axis, Vector3<S>::Zero()) : MotionVector<S>(Vector3<S>::Zero(), axis);
+}
+
+/// Sᵀ f written to out[0 .. nv).
+template <class S>
+inline void joint_project(const Joint<S>& j, const ForceVector<S>& f, S* out) {
+  switch (j.type) {
+    case JointType::Revolute: out[0] = detail::along_axis(j, f.angular); return;
+    case JointType::Prismatic: out[0] = detail::along_axis(j, f.linear); return;
+    default:
+      for (int k = 0; k < 3; ++k) {
+        out[k] = f.angular[k];
+        out[k + 3] = f.linear[k];
+      }
+      return;
+  }
+}
+
+/// Sᵀ x for a 1-DoF joint and a force-like 6-vector x (angular part first).
+template <class S>
+inline S joint_project(const Joint<S>& j, const Vector6<S>& x) {
+  return j.type == JointType::Revolute ? detail::along_axis<S>(j, x.template head<3>())
+                                       : detail::along_axis<S>(j, x.template tail<3>());
+}
+
+/// Iᴬ S for a 1-DoF joint: one column of Iᴬ for an axis-aligned joint.
+template <class S>
+inline Vector6<S> inertia_times_subspace(const Joint<S>& j, const Matrix6<S>& I) {
+  const int offset = j.type == JointType::Revolute ? 0 : 3;
+  switch (j.axis_kind) {
+    case AxisKind::X: return I.col(offset);
+    case AxisKind::Y: return I.col(offset + 1);
+    case AxisKind::Z: return I.col(offset + 2);
+    default: return I.template middleCols<3>(offset) * j.axis;
+  }
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,43 @@
+// Forward kinematics: the pose of every body and frame in base coordinates, optionally the
+// body velocities v_i = ^iX_λ v_λ + S_i q̇_i (RBDA eq. 5.7, first line).
+#pragma once
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+
+namespace spatial_dynamics {
+
+/// ^iX_λ(i) for every body.
+template <class S>
+void update_joint_transforms(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+  detail::check_length("q", q.size(), model.nq);
+  for (int i = 1; i < model.nbodies(); ++i) joint_up_transform(model, i, q.data() + model.joints[i].idx_q, data.X_up[i]);
+}
+
+/// Body poses ^iX_0 = ^iX_λ ^λX_0 and frame poses ^FX_0 = ^FX_B ^BX_0. The pose of body i in
+/// the base is (data.X_base[i].rotation(), data.X_base[i].translation()).
+template <class S>
+void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+  update_joint_transforms(model, data, q);
+  data.X_base[0] = PluckerTransform<S>::Identity();
+  for (int i = 1; i < model.nbodies(); ++i) data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
+  for (std::size_t k = 0; k < model.frames.size(); ++k)
+    data.X_frame_base[k] = model.frames[k].X_frame_body * data.X_base[model.frames[k].body];
+}
+
+/// Poses as above, plus body velocities data.v (body coordinates).
+template <class S>
+void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                        const ConstVectorRef<S>& qd) {
+  detail::check_length("velocity", qd.size(), model.nv);
+  forward_kinematics(model, data, q);
+  data.v[0] = MotionVector<S>::Zero();
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<S>& j = model.joints[i];
+    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + joint_motion(j, qd.data() + j.idx_v);
+  }
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,77 @@
+// Recursive Newton–Euler inverse dynamics, τ = ID(q, q̇, q̈, f_ext)   (RBDA Table 5.1).
+// Gravity enters as a fictitious base acceleration a_0 = −a_g. External forces act on the
+// bodies, each expressed in its body's coordinates.
+#pragma once
+
+#include <vector>
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+
+namespace spatial_dynamics {
+namespace detail {
+
+template <class S>
+const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                            const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
+                            const ForceVector<S>* f_ext) {
+  check_length("q", q.size(), model.nq);
+  check_length("velocity", qd.size(), model.nv);
+  check_length("acceleration", qdd.size(), model.nv);
+  data.v[0] = MotionVector<S>::Zero();
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<S>& j = model.joints[i];
+    const int lambda = model.parent[i];
+    joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
+    const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);              // S q̇
+    data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                           // v_i = X v_λ + S q̇
+    data.a[i] = data.X_up[i].apply(data.a[lambda]) + joint_motion(j, qdd.data() + j.idx_v) +
+                cross(data.v[i], vJ);                                              // a_i = X a_λ + S q̈ + v_i × S q̇
+    const ForceVector<S> Iv = model.inertia[i] * data.v[i];
+    data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)
+    if (f_ext) data.f[i] -= f_ext[i];
+  }
+  for (int i = model.nbodies() - 1; i >= 1; --i) {
+    const Joint<S>& j = model.joints[i];
+    joint_project(j, data.f[i], data.tau.data() + j.idx_v);                        // τ_i = Sᵀ f_i
+    const int lambda = model.parent[i];
+    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
+  }
+  return data.tau;
+}
+
+}  // namespace detail
+
+/// Joint forces τ that produce accelerations q̈ at (q, q̇) under gravity. Result in data.tau.
+template <class S>
+const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                       const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
+  return detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+}
+
+/// As above with external forces f_ext[i] acting on body i (body coordinates; entry 0 unused).
+template <class S>
+const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                       const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
+                       const std::vector<ForceVector<S>>& f_ext) {
+  detail::check_external_forces(model, f_ext);
+  return detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
+}
+
+/// Gravity torques g(q) = ID(q, 0, 0).
+template <class S>
+const VectorX<S>& gravity_torques(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+  return rnea(model, data, q, data.zero_v, data.zero_v);
+}
+
+/// Nonlinear effects C(q, q̇) q̇ + g(q) = ID(q, q̇, 0).
+template <class S>
+const VectorX<S>& nonlinear_effects(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                                    const ConstVectorRef<S>& qd) {
+  return rnea(model, data, q, qd, data.zero_v);
+}
+
+}  // namespace spatial_dynamics
