@@ -1,0 +1,235 @@
+#include "spatial_dynamics/urdf/model_builder.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <console_bridge/console.h>
+#include <urdf_model/model.h>
+#include <urdf_parser/urdf_parser.h>
+
+namespace spatial_dynamics {
+namespace {
+
+using Transform = PluckerTransform<double>;
+
+/// Collects urdfdom's error log lines while it parses, so that a parse failure can say why.
+class ParseErrorCollector : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      if (!errors_.empty()) errors_ += "; ";
+      errors_ += text;
+    }
+  }
+  const std::string& errors() const { return errors_; }
+
+ private:
+  std::string errors_;
+};
+
+/// Routes console_bridge's log to a collector for as long as it lives.
+class CollectorScope {
+ public:
+  explicit CollectorScope(ParseErrorCollector& collector) { console_bridge::useOutputHandler(&collector); }
+  ~CollectorScope() { console_bridge::restorePreviousOutputHandler(); }
+  CollectorScope(const CollectorScope&) = delete;
+  CollectorScope& operator=(const CollectorScope&) = delete;
+};
+
+std::string format(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+
+Transform transform_from_pose(const urdf::Pose& pose) {
+  const Eigen::Quaterniond rotation(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  const Eigen::Vector3d position(pose.position.x, pose.position.y, pose.position.z);
+  return Transform::FromPose(rotation.toRotationMatrix(), position);
+}
+
+/// Checks a link's <inertial> and returns its spatial inertia in link coordinates (eq. 25):
+/// the tensor is given about the centre of mass in the inertial frame, so Ī_c = R Ī Rᵀ.
+RigidInertia<double> link_inertia(const urdf::Link& link) {
+  if (!link.inertial) return RigidInertia<double>::Zero();
+  const urdf::Inertial& in = *link.inertial;
+  const std::string who = "link '" + link.name + "': ";
+  if (!std::isfinite(in.mass)) throw ModelError(who + "mass " + format(in.mass) + " is not finite");
+  if (in.mass < 0.0) throw ModelError(who + "mass " + format(in.mass) + " is negative");
+  Eigen::Matrix3d I;
+  I << in.ixx, in.ixy, in.ixz,
+       in.ixy, in.iyy, in.iyz,
+       in.ixz, in.iyz, in.izz;
+  if (!I.allFinite()) throw ModelError(who + "inertia tensor has a non-finite entry");
+  // The tensor must be positive semi-definite and its principal moments must satisfy the
+  // triangle inequality (λ_i + λ_j ≥ λ_k), or no mass distribution has it.
+  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  const double tolerance = 1e-9 * moments.cwiseAbs().maxCoeff();  // relative: URDF values carry rounding
+  if (moments.minCoeff() < -tolerance)
+    throw ModelError(who + "inertia tensor is not positive semi-definite (principal moments " + format(moments[0]) +
+                     ", " + format(moments[1]) + ", " + format(moments[2]) + ")");
+  if (moments[0] + moments[1] < moments[2] - tolerance)
+    throw ModelError(who + "inertia tensor violates the triangle inequality (principal moments " + format(moments[0]) +
+                     " + " + format(moments[1]) + " < " + format(moments[2]) + ")");
+  const Transform X = transform_from_pose(in.origin);
+  const Eigen::Matrix3d R = X.rotation();
+  return RigidInertia<double>::FromMassCenterInertia(in.mass, X.translation(), R * I * R.transpose());
+}
+
+class Builder {
+ public:
+  Builder(const urdf::ModelInterface& urdf, const ModelBuildOptions& options) : urdf_(urdf), options_(options) {}
+
+  Model<double> build() {
+    const urdf::LinkConstSharedPtr root = urdf_.getRoot();
+    if (!root) throw ModelError("URDF has no root link");
+    model_.gravity = options_.gravity;
+    model_.floating_base = options_.floating_base;
+    add_body(-1, "", Transform::Identity(), Joint<double>());  // body 0: the fixed base
+    if (options_.floating_base) {
+      model_.body_names[0] = "universe";
+      Joint<double> free;
+      free.type = JointType::Free;
+      free.axis_kind = AxisKind::General;
+      free.axis.setZero();
+      free.nq = 7;
+      free.nv = 6;
+      const int body = add_body(0, options_.root_joint_name, Transform::Identity(), free);
+      visit(*root, body, Transform::Identity());
+    } else {
+      visit(*root, 0, Transform::Identity());
+    }
+    resolve_mimics();
+    model_.finalize();
+    return std::move(model_);
+  }
+
+ private:
+  int add_body(int parent, const std::string& joint_name, const Transform& X_tree, Joint<double> joint) {
+    const int body = model_.nbodies();
+    if (parent >= 0) {
+      joint.idx_q = model_.nq;
+      joint.idx_v = model_.nv;
+      model_.nq += joint.nq;
+      model_.nv += joint.nv;
+    }
+    model_.parent.push_back(parent);
+    model_.joints.push_back(joint);
+    model_.X_tree.push_back(X_tree);
+    model_.inertia.push_back(RigidInertia<double>::Zero());
+    model_.body_names.emplace_back();
+    model_.joint_names.push_back(joint_name);
+    return body;
+  }
+
+  /// Adds `link` (whose frame is ^LX_B relative to `body`) and everything below it.
+  void visit(const urdf::Link& link, int body, const Transform& X_link_body) {
+    if (model_.body_names[body].empty()) model_.body_names[body] = link.name;
+    model_.frames.push_back({link.name, body, X_link_body});
+    model_.inertia[body] += X_link_body.applyInverse(link_inertia(link));  // I_B += Xᵀ I_L X (eqs. 24, 26)
+    for (const urdf::JointSharedPtr& joint : link.child_joints) {
+      const urdf::LinkConstSharedPtr child = urdf_.getLink(joint->child_link_name);
+      if (!child) throw ModelError("joint '" + joint->name + "': child link '" + joint->child_link_name + "' not found");
+      const Transform X_joint_body = transform_from_pose(joint->parent_to_joint_origin_transform) * X_link_body;
+      switch (joint->type) {
+        case urdf::Joint::FIXED:
+          visit(*child, body, X_joint_body);  // merged: the child link becomes a frame of this body
+          break;
+        case urdf::Joint::REVOLUTE:
+        case urdf::Joint::CONTINUOUS:
+        case urdf::Joint::PRISMATIC:
+          visit(*child, add_body(body, joint->name, X_joint_body, movable_joint(*joint)), Transform::Identity());
+          break;
+        case urdf::Joint::FLOATING:
+        case urdf::Joint::PLANAR:
+          throw ModelError("joint '" + joint->name + "': " +
+                           (joint->type == urdf::Joint::FLOATING ? "floating" : "planar") +
+                           " joints inside the tree are not supported (a free root joint is requested with the "
+                           "floating-base option instead)");
+        default:
+          throw ModelError("joint '" + joint->name + "': unknown joint type");
+      }
+    }
+  }
+
+  Joint<double> movable_joint(const urdf::Joint& uj) {
+    Joint<double> j;
+    j.type = uj.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
+    const Eigen::Vector3d axis(uj.axis.x, uj.axis.y, uj.axis.z);
+    if (!axis.allFinite()) throw ModelError("joint '" + uj.name + "': axis is not finite");
+    const double norm = axis.norm();
+    if (!(norm > 1e-12)) throw ModelError("joint '" + uj.name + "': axis is zero");
+    j.axis = axis / norm;  // URDF axes are unit vectors; a non-unit one is normalised as urdfdom documents
+    j.axis_kind = classify_axis(j.axis);
+    if (uj.limits) {
+      if (uj.type != urdf::Joint::CONTINUOUS) {
+        j.limits.position_lower = uj.limits->lower;
+        j.limits.position_upper = uj.limits->upper;
+      }
+      j.limits.velocity = uj.limits->velocity;
+      j.limits.effort = uj.limits->effort;
+    }
+    if (uj.mimic) {
+      j.mimic.multiplier = uj.mimic->multiplier;
+      j.mimic.offset = uj.mimic->offset;
+      pending_mimics_.push_back({model_.nbodies(), uj.mimic->joint_name});
+    }
+    return j;
+  }
+
+  void resolve_mimics() {
+    for (const auto& [body, master] : pending_mimics_) {
+      int master_body = -1;
+      for (int i = 1; i < model_.nbodies(); ++i)
+        if (model_.joint_names[i] == master && model_.joints[i].nv == 1) master_body = i;
+      if (master_body < 0)
+        throw ModelError("joint '" + model_.joint_names[body] + "': mimics '" + master +
+                         "', which is not a revolute, continuous or prismatic joint of the model");
+      model_.joints[body].mimic.master_body = master_body;
+    }
+  }
+
+  const urdf::ModelInterface& urdf_;
+  const ModelBuildOptions& options_;
+  Model<double> model_;
+  std::vector<std::pair<int, std::string>> pending_mimics_;
+};
+
+}  // namespace
+
+Model<double> build_model(const urdf::ModelInterface& urdf_model, const ModelBuildOptions& options) {
+  return Builder(urdf_model, options).build();
+}
+
+Model<double> build_model_from_urdf_string(const std::string& urdf_xml, const ModelBuildOptions& options) {
+  urdf::ModelInterfaceSharedPtr parsed;
+  ParseErrorCollector collector;
+  {
+    // console_bridge's output handler is process-wide: parse one document at a time.
+    static std::mutex parse_mutex;
+    std::lock_guard<std::mutex> lock(parse_mutex);
+    const CollectorScope scope(collector);
+    parsed = urdf::parseURDF(urdf_xml);
+  }
+  // urdfdom logs some errors (an unreadable <inertial>, say) and still returns a model with the
+  // element half-filled: any logged error rejects the document.
+  if (!parsed || !collector.errors().empty())
+    throw ModelError("malformed URDF: " + (collector.errors().empty() ? std::string("urdfdom could not parse it")
+                                                                      : collector.errors()));
+  return build_model(*parsed, options);
+}
+
+Model<double> build_model_from_urdf_file(const std::string& path, const ModelBuildOptions& options) {
+  std::ifstream file(path);
+  if (!file) throw ModelError("cannot read URDF file '" + path + "'");
+  std::stringstream text;
+  text << file.rdbuf();
+  return build_model_from_urdf_string(text.str(), options);
+}
+
+}  // namespace spatial_dynamics
