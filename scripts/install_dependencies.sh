@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the package needs to build, run and test.
+# apt-get runs as root, or through sudo otherwise; nothing is installed when all are present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake catkin python3-catkin-pkg
+  ros-core-dev libroscpp-dev librostest-dev python3-rostest
+  liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libeigen3-dev libboost-dev
+  googletest libgtest-dev
+  liborocos-kdl-dev libkdl-parser-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  as_root=()
+else
+  as_root=(sudo)
+fi
+echo "Installing: ${missing[*]}"
+"${as_root[@]}" apt-get update
+DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
