@@ -33,7 +33,8 @@ void print(const sd::Model<double>& model, sd::Data<double>& data, const char* l
   std::printf("\n%s\n  %-24s %14s %14s\n", label, "joint", "position", "torque [N m|N]");
   for (int i = 1; i < model.nbodies(); ++i) {
     const auto& j = model.joints[i];
-    std::printf("  %-24s %14.6f %14.6f\n", model.joint_names[i].c_str(), q[j.idx_q], tau[j.idx_v]);
+    const double shown = std::abs(tau[j.idx_v]) < 5e-7 ? 0.0 : tau[j.idx_v];  // what %.6f shows, without "-0.000000"
+    std::printf("  %-24s %14.6f %14.6f\n", model.joint_names[i].c_str(), q[j.idx_q], shown);
   }
 }
 

@@ -1,5 +1,6 @@
-// Frame Jacobian J(q) (6 × nv): the spatial velocity of a frame is J q̇. Column block of an
-// ancestor joint j is ^FX_j S_j; other columns are zero (RBDA §4.x, eq. for J = Σ ^FX_j S_j).
+// Frame Jacobian J(q) (6 × nv): the spatial velocity of a frame is J q̇ = Σ_j ^FX_j S_j q̇_j
+// over the joints j between the frame's body and the base (v_i = Σ X S q̇ unrolled from
+// v_i = ^iX_λ v_λ + S_i q̇_i); columns of other joints are zero.
 #pragma once
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
