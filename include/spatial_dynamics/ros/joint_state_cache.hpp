@@ -1,0 +1,47 @@
+// The latest position and velocity of every model joint, merged by name from joint_states
+// messages that may each carry only some joints (several publishers, any order). Thread-safe.
+// ROS-free: it takes plain vectors, so it is tested without a master.
+#pragma once
+
+#include <Eigen/Core>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace spatial_dynamics {
+
+class JointStateCache {
+ public:
+  struct Snapshot {
+    Eigen::VectorXd position;
+    Eigen::VectorXd velocity;            // zero for a joint whose publisher sends no velocity
+    std::vector<char> position_known;    // per joint: a position has been received
+    std::vector<char> velocity_known;    // per joint: a velocity has been received
+    bool complete = false;               // every joint's position is known
+  };
+
+  /// `joint_names` in the model's joint order.
+  explicit JointStateCache(std::vector<std::string> joint_names);
+
+  /// Merges one message. Returns an empty string when it was merged, otherwise why it was
+  /// dropped (mismatched lengths, a non-finite value, a duplicate name); the previous state
+  /// stays. Names the model does not know are skipped and listed in `unknown_names`.
+  std::string update(const std::vector<std::string>& names, const std::vector<double>& positions,
+                     const std::vector<double>& velocities, std::vector<std::string>* unknown_names = nullptr);
+
+  /// Copies the current state (buffers in `out` are reused).
+  void snapshot(Snapshot& out) const;
+
+  bool complete() const;
+  const std::vector<std::string>& jointNames() const { return names_; }
+
+ private:
+  const std::vector<std::string> names_;
+  std::unordered_map<std::string, int> index_;
+  mutable std::mutex mutex_;
+  Snapshot state_;
+  int known_positions_ = 0;
+};
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,87 @@
+#include "spatial_dynamics/ros/joint_request_decoder.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace spatial_dynamics {
+
+JointRequestDecoder::JointRequestDecoder(const Model<double>& model) {
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<double>& j = model.joints[i];
+    if (j.nv != 1) throw std::invalid_argument("joint '" + model.joint_names[i] + "': only 1-DoF joints are served");
+    names_.push_back(model.joint_names[i]);
+    lower_.push_back(j.limits.position_lower);
+    upper_.push_back(j.limits.position_upper);
+    index_[model.joint_names[i]] = j.idx_v;
+  }
+}
+
+std::string JointRequestDecoder::resolve(const std::vector<std::string>& names, std::vector<int>& indices) const {
+  indices.assign(names.size(), -1);
+  std::vector<char> seen(names_.size(), 0);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto it = index_.find(names[k]);
+    if (it == index_.end()) return "unknown joint '" + names[k] + "'";
+    if (seen[it->second]) return "joint '" + names[k] + "' is named twice";
+    seen[it->second] = 1;
+    indices[k] = it->second;
+  }
+  return {};
+}
+
+std::string JointRequestDecoder::decode(const std::string& field, const std::vector<std::string>& names,
+                                        const std::vector<int>& indices, const std::vector<double>& values,
+                                        Default fallback, const JointStateCache::Snapshot& state,
+                                        Eigen::VectorXd& out) const {
+  const int n = static_cast<int>(names_.size());
+  out.resize(n);
+  const bool by_name = !names.empty();
+  if (!values.empty()) {
+    const std::size_t expected = by_name ? names.size() : names_.size();
+    if (values.size() != expected)
+      return field + " has " + std::to_string(values.size()) + " entries but " +
+             (by_name ? "name has " + std::to_string(names.size())
+                      : "the model has " + std::to_string(n) + " joints (name is empty)");
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (!std::isfinite(values[k]))
+        return field + " of joint '" + (by_name ? names[k] : names_[k]) + "' is not finite";
+    if (!by_name) {
+      out = Eigen::Map<const Eigen::VectorXd>(values.data(), n);
+      return {};
+    }
+  }
+  // Defaults for the joints the request leaves out, then the named values on top.
+  std::vector<char> given(n, 0);
+  if (!values.empty())
+    for (std::size_t k = 0; k < values.size(); ++k) given[indices[k]] = 1;
+  for (int i = 0; i < n; ++i) {
+    if (given[i]) continue;
+    switch (fallback) {
+      case Default::Zero: out[i] = 0.0; break;
+      case Default::LatestVelocity: out[i] = state.velocity_known.empty() ? 0.0 : state.velocity[i]; break;
+      case Default::LatestPosition:
+        if (state.position_known.empty() || !state.position_known[i])
+          return "no joint state yet for joint '" + names_[i] + "' (" + field + " not given in the request)";
+        out[i] = state.position[i];
+        break;
+    }
+  }
+  for (std::size_t k = 0; k < values.size(); ++k) out[indices[k]] = values[k];
+  return {};
+}
+
+std::string JointRequestDecoder::limitWarnings(const Eigen::VectorXd& q) const {
+  std::ostringstream warnings;
+  for (int i = 0; i < static_cast<int>(names_.size()); ++i) {
+    const bool has_range = upper_[i] > lower_[i];  // URDF's lower = upper = 0 means "not given"
+    if (has_range && (q[i] < lower_[i] || q[i] > upper_[i])) {
+      if (warnings.tellp() > 0) warnings << "; ";
+      warnings << "warning: joint '" << names_[i] << "' position " << q[i] << " is outside its limits [" << lower_[i]
+               << ", " << upper_[i] << "]";
+    }
+  }
+  return warnings.str();
+}
+
+}  // namespace spatial_dynamics
