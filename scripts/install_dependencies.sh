@@ -9,6 +9,11 @@ packages=(
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libeigen3-dev libboost-dev
   googletest libgtest-dev
   liborocos-kdl-dev libkdl-parser-dev
+  ros-message-generation python3-genpy
+  libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
+  libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev
+  python3-rospy python3-roslaunch python3-rosservice python3-rostopic
+  python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-std-srvs
 )
 
 missing=()

@@ -144,7 +144,7 @@ std::shared_ptr<const ServedModel> DynamicsNode::loadFromParameters() const {
   served->decoder = std::make_unique<JointRequestDecoder>(*served->model);
   served->cache = std::make_unique<JointStateCache>(served->decoder->jointNames());
   served->root_frame = served->model->body_names[0];
-  served->robot_name = served->root_frame;
+  served->robot_name = served->model->name;
   served->version = next_model_version++;
   return served;
 }
@@ -256,6 +256,13 @@ PluckerTransform<double> DynamicsNode::frameTransform(const ServedModel& served,
   // ^FX_0 of a model frame; the base coordinates are those of the root link's frame.
   auto from_base = [&](const std::string& name) { return data.X_frame_base[model.frameIndex(name)]; };
   if (source_in_model && target_in_model) return from_base(target) * from_base(source).inverse();
+  // One robot frame and one tf frame: chain through the robot's root link, which tf must know.
+  const std::string& tf_frame = source_in_model ? target : source;
+  if (!tf_buffer_._frameExists(tf_frame))
+    throw std::runtime_error("frame '" + tf_frame + "' is known neither to the robot model nor to tf2");
+  if (!tf_buffer_._frameExists(served.root_frame))
+    throw std::runtime_error("frame '" + tf_frame + "' is on tf2 but the robot's root link '" + served.root_frame +
+                             "' is not, so the two cannot be chained");
   if (source_in_model) return tfTransform(target, served.root_frame, stamp) * from_base(source).inverse();
   return from_base(target) * tfTransform(served.root_frame, source, stamp);
 }

@@ -88,6 +88,7 @@ class Builder {
   Model<double> build() {
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
     if (!root) throw ModelError("URDF has no root link");
+    model_.name = urdf_.getName();
     model_.gravity = options_.gravity;
     model_.floating_base = options_.floating_base;
     add_body(-1, "", Transform::Identity(), Joint<double>());  // body 0: the fixed base

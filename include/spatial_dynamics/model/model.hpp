@@ -18,6 +18,7 @@ namespace spatial_dynamics {
 
 template <class S>
 struct Model {
+  std::string name;  // the robot's name (URDF <robot name>)
   int nq = 0;  // configuration size (a free root adds 7)
   int nv = 0;  // velocity size = number of degrees of freedom (a free root adds 6)
   bool floating_base = false;
@@ -77,6 +78,7 @@ struct Model {
   template <class T>
   Model<T> cast() const {
     Model<T> m;
+    m.name = name;
     m.nq = nq;
     m.nv = nv;
     m.floating_base = floating_base;

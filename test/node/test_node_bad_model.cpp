@@ -1,0 +1,63 @@
+// Integration test: a node started with a broken robot_description stays up, answers every
+// service with the reason, and serves once ~reload finds a good model; a bad ~gravity is refused
+// on reload while the previous model keeps being served.
+#include <std_srvs/Trigger.h>
+
+#include <fstream>
+
+#include "node_test_utils.hpp"
+
+using namespace sd_node_test;
+
+TEST(BadModel, ServicesAnswerWhyUntilAGoodModelIsReloaded) {
+  ASSERT_TRUE(wait_for_services());
+  spatial_dynamics::MassMatrix mm;
+  mm.request.position = std::vector<double>(9, 0.0);
+  mm = call("mass_matrix", mm);
+  EXPECT_FALSE(mm.response.success);
+  EXPECT_TRUE(contains(mm.response.message, "no robot model")) << mm.response.message;
+  EXPECT_TRUE(contains(mm.response.message, "malformed URDF")) << mm.response.message;
+  spatial_dynamics::InverseDynamics id = call("inverse_dynamics", spatial_dynamics::InverseDynamics());
+  EXPECT_FALSE(id.response.success);
+  EXPECT_TRUE(contains(id.response.message, "no robot model")) << id.response.message;
+
+  std::ifstream file(sd_test::robot_path("panda.urdf"));
+  const std::string panda((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  ros::param::set("robot_description", panda);
+  std_srvs::Trigger reload;
+  ASSERT_TRUE(ros::service::call(service("reload"), reload));
+  EXPECT_TRUE(reload.response.success) << reload.response.message;
+  mm = call("mass_matrix", mm);
+  EXPECT_TRUE(mm.response.success) << mm.response.message;
+
+  // A gravity parameter that is not three numbers is refused, naming the parameter.
+  ros::param::set("/dynamics/gravity", std::vector<double>{0.0, -9.81});
+  ASSERT_TRUE(ros::service::call(service("reload"), reload));
+  EXPECT_FALSE(reload.response.success);
+  EXPECT_TRUE(contains(reload.response.message, "/dynamics/gravity")) << reload.response.message;
+
+  // A valid one takes effect: gravity torques on the moon.
+  ros::param::set("/dynamics/gravity", std::vector<double>{0.0, 0.0, -1.62});
+  ASSERT_TRUE(ros::service::call(service("reload"), reload));
+  EXPECT_TRUE(reload.response.success) << reload.response.message;
+  sd::ModelBuildOptions moon;
+  moon.gravity = Eigen::Vector3d(0.0, 0.0, -1.62);
+  const sd::Model<double> model = sd::build_model_from_urdf_string(panda, moon);
+  sd::Data<double> data(model);
+  std::mt19937 rng(9);
+  const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
+  spatial_dynamics::InverseDynamics gravity;
+  gravity.request.position = to_std(q);
+  gravity.request.velocity = std::vector<double>(model.nv, 0.0);
+  gravity = call("inverse_dynamics", gravity);
+  ASSERT_TRUE(gravity.response.success) << gravity.response.message;
+  EXPECT_LE(sd_test::relative_error(to_eigen(gravity.response.effort), sd::gravity_torques(model, data, q)), 1e-12);
+}
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_node_bad_model");
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
