@@ -98,12 +98,25 @@ bool decode_wrenches(const Model<double>& model, const std::vector<geometry_msgs
   return !wrenches.empty();
 }
 
-std::string velocity_notes(const ServedModel& served, const Workspace& ws, const std::vector<double>& velocity) {
-  if (!velocity.empty()) return {};
+/// ws.q, ws.qd, the third joint array (`field`: acceleration or effort, zero when left out) in
+/// ws.x, and the external wrenches in ws.f_ext. Returns whether any wrench was given.
+template <class Request>
+bool decode_dynamics_request(const ServedModel& served, Workspace& ws, const Request& req, const std::string& field,
+                             const std::vector<double>& values) {
+  decode_state(served, ws, req);
+  check(served.decoder->decode(field, req.name, ws.indices, values, JointRequestDecoder::Default::Zero, ws.state, ws.x));
+  return decode_wrenches(*served.model, req.external_wrenches, ws.f_ext);
+}
+
+/// Warnings for a successful answer: positions outside limits, velocities taken as zero.
+std::string request_notes(const ServedModel& served, const Workspace& ws, const std::vector<double>& velocity) {
+  std::string notes = served.decoder->limitWarnings(ws.q);
+  if (!velocity.empty()) return notes;
   std::string missing;
   for (std::size_t i = 0; i < ws.state.velocity_known.size(); ++i)
     if (!ws.state.velocity_known[i]) missing += (missing.empty() ? "'" : ", '") + served.decoder->jointNames()[i] + "'";
-  return missing.empty() ? std::string() : "note: no velocity received on joint_states for joint(s) " + missing + "; zero used";
+  if (!missing.empty()) append(notes, "note: no velocity received on joint_states for joint(s) " + missing + "; zero used");
+  return notes;
 }
 
 }  // namespace
@@ -177,33 +190,25 @@ bool DynamicsNode::serve(Counters& counters, Response& res, Compute&& compute) {
 
 bool DynamicsNode::onInverseDynamics(InverseDynamics::Request& req, InverseDynamics::Response& res) {
   return serve(inverse_dynamics_, res, [&](const ServedModel& served, Workspace& ws) {
+    const bool with_wrenches = decode_dynamics_request(served, ws, req, "acceleration", req.acceleration);
     const Model<double>& model = *served.model;
-    decode_state(served, ws, req);
-    check(served.decoder->decode("acceleration", req.name, ws.indices, req.acceleration,
-                                 JointRequestDecoder::Default::Zero, ws.state, ws.x));
-    const bool with_wrenches = decode_wrenches(model, req.external_wrenches, ws.f_ext);
     const Eigen::VectorXd& tau = with_wrenches ? rnea(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
                                                : rnea(model, *ws.data, ws.q, ws.qd, ws.x);
     res.name = served.decoder->jointNames();
     res.effort.assign(tau.data(), tau.data() + tau.size());
-    append(res.message, served.decoder->limitWarnings(ws.q));
-    append(res.message, velocity_notes(served, ws, req.velocity));
+    res.message = request_notes(served, ws, req.velocity);
   });
 }
 
 bool DynamicsNode::onForwardDynamics(ForwardDynamics::Request& req, ForwardDynamics::Response& res) {
   return serve(forward_dynamics_, res, [&](const ServedModel& served, Workspace& ws) {
+    const bool with_wrenches = decode_dynamics_request(served, ws, req, "effort", req.effort);
     const Model<double>& model = *served.model;
-    decode_state(served, ws, req);
-    check(served.decoder->decode("effort", req.name, ws.indices, req.effort, JointRequestDecoder::Default::Zero,
-                                 ws.state, ws.x));
-    const bool with_wrenches = decode_wrenches(model, req.external_wrenches, ws.f_ext);
     const Eigen::VectorXd& qdd = with_wrenches ? aba(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
                                                : aba(model, *ws.data, ws.q, ws.qd, ws.x);
     res.name = served.decoder->jointNames();
     res.acceleration.assign(qdd.data(), qdd.data() + qdd.size());
-    append(res.message, served.decoder->limitWarnings(ws.q));
-    append(res.message, velocity_notes(served, ws, req.velocity));
+    res.message = request_notes(served, ws, req.velocity);
   });
 }
 
