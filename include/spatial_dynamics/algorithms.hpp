@@ -4,6 +4,7 @@
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/energy.hpp"
+#include "spatial_dynamics/algorithms/forward_dynamics.hpp"
 #include "spatial_dynamics/algorithms/jacobian.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"

@@ -31,6 +31,8 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   check_length("effort", tau.size(), model.nv);
+  if (model.has_coupled_joints)
+    throw std::invalid_argument("the model has coupled mimic joints, which the ABA cannot solve; use forward_dynamics()");
   const int n = model.nbodies();
 
   // Pass 1 (outward): velocities, velocity-product accelerations, rigid bias forces.

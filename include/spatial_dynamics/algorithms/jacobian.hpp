@@ -27,8 +27,9 @@ const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const Co
   for (int j = model.frames[frame].body; j > 0; j = model.parent[j]) {
     const PluckerTransform<S> X_Fj = X_F0 * data.X_base[j].inverse();        // ^FX_j = ^FX_0 (^jX_0)^-1
     const Joint<S>& joint = model.joints[j];
+    const S scale = coupling_multiplier(joint);  // a coupled joint moves with its master's coordinate
     for (int k = 0; k < joint.nv; ++k)
-      data.J.col(joint.idx_v + k) = X_Fj.apply(joint_subspace_column(joint, k)).toVector();
+      data.J.col(joint.idx_v + k) += scale * X_Fj.apply(joint_subspace_column(joint, k)).toVector();
   }
   return data.J;
 }

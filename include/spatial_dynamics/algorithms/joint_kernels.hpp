@@ -144,4 +144,49 @@ inline Vector6<S> inertia_times_subspace(const Joint<S>& j, const Matrix6<S>& I)
   }
 }
 
+// ---- whole-vector access: handles coupled mimic joints ---------------------------------------
+
+/// ^iX_λ(i) from the whole configuration vector q.
+template <class S>
+inline void body_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+  const Joint<S>& j = model.joints[i];
+  if (j.coupled) {
+    const S qi = j.mimic.multiplier * q[j.idx_q] + j.mimic.offset;  // q = k q_master + offset
+    joint_up_transform(model, i, &qi, X);
+  } else {
+    joint_up_transform(model, i, q + j.idx_q, X);
+  }
+}
+
+/// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
+template <class S>
+inline MotionVector<S> body_joint_motion(const Joint<S>& j, const S* qd) {
+  if (j.coupled) {
+    const S v = j.mimic.multiplier * qd[j.idx_v];  // q̇ = k q̇_master
+    return joint_motion(j, &v);
+  }
+  return joint_motion(j, qd + j.idx_v);
+}
+
+/// τ ← Sᵀ f for the joint's coordinates; with `accumulate` (models with coupled joints, τ zeroed
+/// first) τ += k Sᵀ f instead, k the coupling multiplier (1 for a joint of its own): by virtual
+/// power a coupled joint's force acts on its master's coordinate scaled by k.
+template <class S>
+inline void store_joint_force(const Joint<S>& j, const ForceVector<S>& f, S* tau, bool accumulate) {
+  if (!accumulate) {
+    joint_project(j, f, tau + j.idx_v);
+    return;
+  }
+  S projected[6];
+  joint_project(j, f, projected);
+  const S k = j.coupled ? j.mimic.multiplier : S(1);
+  for (int l = 0; l < j.nv; ++l) tau[j.idx_v + l] += k * projected[l];
+}
+
+/// The coupling multiplier of a joint's coordinates (1 for a joint of its own).
+template <class S>
+inline S coupling_multiplier(const Joint<S>& j) {
+  return j.coupled ? j.mimic.multiplier : S(1);
+}
+
 }  // namespace spatial_dynamics

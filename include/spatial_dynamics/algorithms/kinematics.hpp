@@ -13,7 +13,7 @@ namespace spatial_dynamics {
 template <class S>
 void update_joint_transforms(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   detail::check_length("q", q.size(), model.nq);
-  for (int i = 1; i < model.nbodies(); ++i) joint_up_transform(model, i, q.data() + model.joints[i].idx_q, data.X_up[i]);
+  for (int i = 1; i < model.nbodies(); ++i) body_up_transform(model, i, q.data(), data.X_up[i]);
 }
 
 /// Body poses ^iX_0 = ^iX_λ ^λX_0 and frame poses ^FX_0 = ^FX_B ^BX_0. The pose of body i in
@@ -35,8 +35,7 @@ void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorR
   forward_kinematics(model, data, q);
   data.v[0] = MotionVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) {
-    const Joint<S>& j = model.joints[i];
-    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + joint_motion(j, qd.data() + j.idx_v);
+    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model.joints[i], qd.data());
   }
 }
 

@@ -25,18 +25,19 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
-    joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
-    const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);              // S q̇
+    body_up_transform(model, i, q.data(), data.X_up[i]);
+    const MotionVector<S> vJ = body_joint_motion(j, qd.data());                    // S q̇
     data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                           // v_i = X v_λ + S q̇
-    data.a[i] = data.X_up[i].apply(data.a[lambda]) + joint_motion(j, qdd.data() + j.idx_v) +
+    data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(j, qdd.data()) +
                 cross(data.v[i], vJ);                                              // a_i = X a_λ + S q̈ + v_i × S q̇
     const ForceVector<S> Iv = model.inertia[i] * data.v[i];
     data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)
     if (f_ext) data.f[i] -= f_ext[i];
   }
+  const bool accumulate = model.has_coupled_joints;
+  if (accumulate) data.tau.setZero();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    const Joint<S>& j = model.joints[i];
-    joint_project(j, data.f[i], data.tau.data() + j.idx_v);                        // τ_i = Sᵀ f_i
+    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
     const int lambda = model.parent[i];
     if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
   }

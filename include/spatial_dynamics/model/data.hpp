@@ -2,6 +2,7 @@
 // belongs to one thread; algorithm calls write into it and never allocate.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
@@ -42,6 +43,9 @@ struct Data {
   // Zero inputs for the RNEA special cases (gravity torques, nonlinear effects).
   VectorX<S> zero_v;
 
+  // Cholesky factor for forward dynamics through the mass matrix (sized once).
+  Eigen::LLT<MatrixX<S>> llt;
+
   explicit Data(const Model<S>& model)
       : X_up(model.nbodies()),
         X_base(model.nbodies()),
@@ -59,7 +63,8 @@ struct Data {
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
         J(Matrix6X<S>::Zero(6, model.nv)),
-        zero_v(VectorX<S>::Zero(model.nv)) {}
+        zero_v(VectorX<S>::Zero(model.nv)),
+        llt(model.nv) {}
 };
 
 }  // namespace spatial_dynamics

@@ -57,6 +57,9 @@ struct Joint {
   int nv = 1;
   JointLimits<S> limits;
   MimicRelation<S> mimic;
+  /// Coupled mimic joint: it has no coordinates of its own; idx_q/idx_v point at its master's and
+  /// q = multiplier · q_master + offset, q̇ = multiplier · q̇_master (see couple_mimic_joints).
+  bool coupled = false;
 
   template <class T>
   Joint<T> cast() const {
@@ -70,6 +73,7 @@ struct Joint {
     j.nv = nv;
     j.limits = limits.template cast<T>();
     j.mimic = mimic.template cast<T>();
+    j.coupled = coupled;
     return j;
   }
 };

@@ -22,6 +22,7 @@ struct Model {
   int nq = 0;  // configuration size (a free root adds 7)
   int nv = 0;  // velocity size = number of degrees of freedom (a free root adds 6)
   bool floating_base = false;
+  bool has_coupled_joints = false;  // some joints follow a master's coordinate (couple_mimic_joints)
 
   // Per body, index 0 = fixed base. Entries 0 of joints/X_tree/joint_names are unused.
   std::vector<int> parent;
@@ -57,6 +58,7 @@ struct Model {
   std::vector<std::string> velocityNames() const {
     std::vector<std::string> names;
     for (int i = 1; i < nbodies(); ++i) {
+      if (joints[i].coupled) continue;  // no coordinate of its own
       if (joints[i].type == JointType::Free) {
         for (const char* c : {"wx", "wy", "wz", "vx", "vy", "vz"}) names.push_back(joint_names[i] + "/" + c);
       } else {
@@ -82,6 +84,7 @@ struct Model {
     m.nq = nq;
     m.nv = nv;
     m.floating_base = floating_base;
+    m.has_coupled_joints = has_coupled_joints;
     m.parent = parent;
     for (const auto& j : joints) m.joints.push_back(j.template cast<T>());
     for (const auto& x : X_tree) m.X_tree.push_back(x.template cast<T>());
