@@ -1,5 +1,7 @@
 #include "spatial_dynamics/urdf/model_builder.hpp"
 
+#include "spatial_dynamics/model/physical_inertia.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -40,13 +42,6 @@ class CollectorScope {
   CollectorScope& operator=(const CollectorScope&) = delete;
 };
 
-std::string format(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
 Transform transform_from_pose(const urdf::Pose& pose) {
   const Eigen::Quaterniond rotation(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
   const Eigen::Vector3d position(pose.position.x, pose.position.y, pose.position.z);
@@ -58,24 +53,13 @@ Transform transform_from_pose(const urdf::Pose& pose) {
 RigidInertia<double> link_inertia(const urdf::Link& link) {
   if (!link.inertial) return RigidInertia<double>::Zero();
   const urdf::Inertial& in = *link.inertial;
-  const std::string who = "link '" + link.name + "': ";
-  if (!std::isfinite(in.mass)) throw ModelError(who + "mass " + format(in.mass) + " is not finite");
-  if (in.mass < 0.0) throw ModelError(who + "mass " + format(in.mass) + " is negative");
   Eigen::Matrix3d I;
   I << in.ixx, in.ixy, in.ixz,
        in.ixy, in.iyy, in.iyz,
        in.ixz, in.iyz, in.izz;
-  if (!I.allFinite()) throw ModelError(who + "inertia tensor has a non-finite entry");
-  // The tensor must be positive semi-definite and its principal moments must satisfy the
-  // triangle inequality (λ_i + λ_j ≥ λ_k), or no mass distribution has it.
-  const Eigen::Vector3d moments = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
-  const double tolerance = 1e-9 * moments.cwiseAbs().maxCoeff();  // relative: URDF values carry rounding
-  if (moments.minCoeff() < -tolerance)
-    throw ModelError(who + "inertia tensor is not positive semi-definite (principal moments " + format(moments[0]) +
-                     ", " + format(moments[1]) + ", " + format(moments[2]) + ")");
-  if (moments[0] + moments[1] < moments[2] - tolerance)
-    throw ModelError(who + "inertia tensor violates the triangle inequality (principal moments " + format(moments[0]) +
-                     " + " + format(moments[1]) + " < " + format(moments[2]) + ")");
+  const std::string problem = inertia_problem(in.mass, Eigen::Vector3d(in.origin.position.x, in.origin.position.y,
+                                                                       in.origin.position.z), I);
+  if (!problem.empty()) throw ModelError("link '" + link.name + "': " + problem);
   const Transform X = transform_from_pose(in.origin);
   const Eigen::Matrix3d R = X.rotation();
   return RigidInertia<double>::FromMassCenterInertia(in.mass, X.translation(), R * I * R.transpose());
