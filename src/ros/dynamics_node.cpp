@@ -1,18 +1,22 @@
 #include "spatial_dynamics/ros/dynamics_node.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
+#include <ros/names.h>
 #include <tf2/exceptions.h>
 
 #include "spatial_dynamics/algorithms.hpp"
+#include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
+#include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 
 namespace spatial_dynamics {
 namespace {
 
-/// Per-thread buffers, rebuilt when the served model changes (Data is allocated once per model).
+/// Per-thread buffers of one scene, rebuilt when the scene's model changes (Data is allocated
+/// once per model).
 struct Workspace {
   std::uint64_t version = 0;
   std::unique_ptr<Data<double>> data;
@@ -22,17 +26,19 @@ struct Workspace {
   std::vector<ForceVector<double>> f_ext;
 };
 
-Workspace& workspace_for(const ServedModel& served) {
-  thread_local Workspace ws;
-  if (ws.version != served.version) {
-    ws.data = std::make_unique<Data<double>>(*served.model);
-    ws.f_ext.assign(served.model->nbodies(), ForceVector<double>::Zero());
-    ws.version = served.version;
+Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene) {
+  thread_local std::vector<Workspace> workspaces;
+  if (workspaces.size() <= scene_index) workspaces.resize(scene_index + 1);
+  Workspace& ws = workspaces[scene_index];
+  if (ws.version != scene.version) {
+    ws.data = std::make_unique<Data<double>>(*scene.model);
+    ws.f_ext.assign(scene.model->nbodies(), ForceVector<double>::Zero());
+    ws.version = scene.version;
   }
   return ws;
 }
 
-std::atomic<std::uint64_t> next_model_version{1};
+std::atomic<std::uint64_t> next_scene_version{1};
 
 /// Throws std::runtime_error(message) when `error` is not empty.
 void check(const std::string& error) {
@@ -62,20 +68,12 @@ Eigen::Vector3d read_gravity(const ros::NodeHandle& private_nh) {
 }
 
 /// The joint order and positions of a request, decoded into ws.indices and ws.q.
-void decode_positions(const ServedModel& served, Workspace& ws, const std::vector<std::string>& names,
+void decode_positions(const ServedScene& scene, Workspace& ws, const std::vector<std::string>& names,
                       const std::vector<double>& positions) {
-  check(served.decoder->resolve(names, ws.indices));
-  served.cache->snapshot(ws.state);
-  check(served.decoder->decode("position", names, ws.indices, positions, JointRequestDecoder::Default::LatestPosition,
-                               ws.state, ws.q));
-}
-
-/// Positions and velocities of a request, decoded into ws.q and ws.qd.
-template <class Request>
-void decode_state(const ServedModel& served, Workspace& ws, const Request& req) {
-  decode_positions(served, ws, req.name, req.position);
-  check(served.decoder->decode("velocity", req.name, ws.indices, req.velocity,
-                               JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
+  check(scene.decoder->resolve(names, ws.indices));
+  scene.robot->cache->snapshot(ws.state);
+  check(scene.decoder->decode("position", names, ws.indices, positions, JointRequestDecoder::Default::LatestPosition,
+                              ws.state, ws.q));
 }
 
 /// External wrenches → forces on bodies (body coordinates): f_B = ^FX_Bᵀ f_F for a wrench given
@@ -101,22 +99,63 @@ bool decode_wrenches(const Model<double>& model, const std::vector<geometry_msgs
 /// ws.q, ws.qd, the third joint array (`field`: acceleration or effort, zero when left out) in
 /// ws.x, and the external wrenches in ws.f_ext. Returns whether any wrench was given.
 template <class Request>
-bool decode_dynamics_request(const ServedModel& served, Workspace& ws, const Request& req, const std::string& field,
+bool decode_dynamics_request(const ServedScene& scene, Workspace& ws, const Request& req, const std::string& field,
                              const std::vector<double>& values) {
-  decode_state(served, ws, req);
-  check(served.decoder->decode(field, req.name, ws.indices, values, JointRequestDecoder::Default::Zero, ws.state, ws.x));
-  return decode_wrenches(*served.model, req.external_wrenches, ws.f_ext);
+  decode_positions(scene, ws, req.name, req.position);
+  check(scene.decoder->decode("velocity", req.name, ws.indices, req.velocity,
+                              JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
+  check(scene.decoder->decode(field, req.name, ws.indices, values, JointRequestDecoder::Default::Zero, ws.state, ws.x));
+  return decode_wrenches(*scene.model, req.external_wrenches, ws.f_ext);
 }
 
 /// Warnings for a successful answer: positions outside limits, velocities taken as zero.
-std::string request_notes(const ServedModel& served, const Workspace& ws, const std::vector<double>& velocity) {
-  std::string notes = served.decoder->limitWarnings(ws.q);
+std::string request_notes(const ServedScene& scene, const Workspace& ws, const std::vector<double>& velocity) {
+  std::string notes = scene.decoder->limitWarnings(ws.q);
   if (!velocity.empty()) return notes;
   std::string missing;
-  for (std::size_t i = 0; i < ws.state.velocity_known.size(); ++i)
-    if (!ws.state.velocity_known[i]) missing += (missing.empty() ? "'" : ", '") + served.decoder->jointNames()[i] + "'";
+  for (std::size_t i = 0; i < scene.decoder->jointNames().size(); ++i)
+    if (!ws.state.velocity_known[scene.decoder->stateIndex(static_cast<int>(i))])
+      missing += (missing.empty() ? "'" : ", '") + scene.decoder->jointNames()[i] + "'";
   if (!missing.empty()) append(notes, "note: no velocity received on joint_states for joint(s) " + missing + "; zero used");
   return notes;
+}
+
+/// A list-of-strings parameter; throws naming it when it has another type.
+std::vector<std::string> read_names(const ros::NodeHandle& nh, const std::string& key) {
+  std::vector<std::string> names;
+  if (!nh.getParam(key, names))
+    throw std::runtime_error("parameter " + nh.resolveName(key) + " must be a list of names");
+  return names;
+}
+
+/// Reads `joints` or `root_link` + `tip_links` under `nh` into `config`.
+void read_scene(const ros::NodeHandle& nh, SceneConfig& config) {
+  config.parameter = nh.getNamespace();
+  try {
+    const bool by_joints = nh.hasParam("joints"), by_root = nh.hasParam("root_link") || nh.hasParam("tip_links");
+    if (by_joints && by_root)
+      throw std::runtime_error("give either " + nh.resolveName("joints") + " or " + nh.resolveName("root_link") +
+                               " with " + nh.resolveName("tip_links") + ", not both");
+    if (by_joints) {
+      config.reduced = true;
+      config.joints = read_names(nh, "joints");
+    } else if (by_root) {
+      config.reduced = true;
+      if (!nh.getParam("root_link", config.root_link))
+        throw std::runtime_error("parameter " + nh.resolveName("root_link") + " must be a link name");
+      config.tip_links = read_names(nh, "tip_links");
+    } else if (!config.name.empty()) {
+      throw std::runtime_error("scene '" + config.name + "' needs " + nh.resolveName("joints") + " or " +
+                               nh.resolveName("root_link") + " and " + nh.resolveName("tip_links"));
+    }
+  } catch (const std::exception& e) {
+    config.error = e.what();
+  }
+}
+
+template <class Vector>
+void copy_to(const Vector& v, std::vector<double>& out) {
+  out.assign(v.data(), v.data() + v.size());
 }
 
 }  // namespace
@@ -124,21 +163,37 @@ std::string request_notes(const ServedModel& served, const Workspace& ws, const 
 DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
     : nh_(nh), private_nh_(private_nh), tf_listener_(tf_buffer_), diagnostics_(nh, private_nh) {
   private_nh_.param("publish_computed_torques", publish_computed_torques_, true);
+  private_nh_.param("relock_tolerance", relock_tolerance_, 1e-6);
+  std::string mimic_joints = "independent";
+  private_nh_.param<std::string>("mimic_joints", mimic_joints, mimic_joints);
+  coupled_mimic_joints_ = mimic_joints == "coupled";
+  readSceneConfigs();
   try {
-    served_ = loadFromParameters();
-    ROS_INFO("dynamics: serving '%s' with %d joints", served_->robot_name.c_str(), served_->model->nv);
+    if (mimic_joints != "independent" && mimic_joints != "coupled")
+      throw std::runtime_error("parameter " + private_nh_.resolveName("mimic_joints") +
+                               " must be 'independent' or 'coupled', not '" + mimic_joints + "'");
+    if (!(relock_tolerance_ >= 0.0))
+      throw std::runtime_error("parameter " + private_nh_.resolveName("relock_tolerance") + " must be >= 0");
+    install(loadRobot({}));
+    ROS_INFO("dynamics: serving '%s' with %d joints", robot_->robot_name.c_str(), robot_->bare->nv);
   } catch (const std::exception& e) {
     load_error_ = e.what();
+    scenes_.assign(scene_configs_.size(), nullptr);
     ROS_ERROR("dynamics: no robot model: %s", load_error_.c_str());
   }
-  computed_torques_pub_ = private_nh_.advertise<sensor_msgs::JointState>("computed_torques", 10);
+  for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
+    if (!scene_configs_[k].error.empty())
+      ROS_ERROR("dynamics: %s", scene_configs_[k].error.c_str());
+    else if (scenes_[k] && !scenes_[k]->error.empty())
+      ROS_ERROR("dynamics: %s", scenes_[k]->error.c_str());
+  }
+  endpoints_ = std::vector<SceneEndpoints>(scene_configs_.size());
+  for (std::size_t k = 0; k < scene_configs_.size(); ++k) advertiseScene(k);
   joint_states_sub_ = nh_.subscribe("joint_states", 100, &DynamicsNode::onJointStates, this,
                                     ros::TransportHints().tcpNoDelay());
-  services_.push_back(private_nh_.advertiseService("inverse_dynamics", &DynamicsNode::onInverseDynamics, this));
-  services_.push_back(private_nh_.advertiseService("forward_dynamics", &DynamicsNode::onForwardDynamics, this));
-  services_.push_back(private_nh_.advertiseService("mass_matrix", &DynamicsNode::onMassMatrix, this));
   services_.push_back(private_nh_.advertiseService("transform_wrench", &DynamicsNode::onTransformWrench, this));
   services_.push_back(private_nh_.advertiseService("reload", &DynamicsNode::onReload, this));
+  services_.push_back(private_nh_.advertiseService("set_payload", &DynamicsNode::onSetPayload, this));
 
   diagnostics_.setHardwareID("none");
   diagnostics_.add("Dynamics", this, &DynamicsNode::diagnose);
@@ -146,39 +201,143 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   diagnostics_timer_ = private_nh_.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
 }
 
-std::shared_ptr<const ServedModel> DynamicsNode::loadFromParameters() const {
+void DynamicsNode::readSceneConfigs() {
+  SceneConfig main;
+  read_scene(private_nh_, main);
+  scene_configs_.push_back(main);
+  XmlRpc::XmlRpcValue scenes;
+  if (!private_nh_.getParam("scenes", scenes)) return;
+  if (scenes.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    SceneConfig bad;
+    bad.name = "scenes";
+    bad.error = "parameter " + private_nh_.resolveName("scenes") + " must be a dictionary of scenes";
+    ROS_ERROR("dynamics: %s", bad.error.c_str());
+    return;
+  }
+  for (auto it = scenes.begin(); it != scenes.end(); ++it) {
+    SceneConfig config;
+    config.name = it->first;
+    std::string why;
+    if (!ros::names::validate(config.name, why)) {
+      ROS_ERROR("dynamics: scene name '%s' is not a valid ROS name (%s); it is not served", config.name.c_str(), why.c_str());
+      continue;
+    }
+    read_scene(ros::NodeHandle(private_nh_, "scenes/" + config.name), config);
+    scene_configs_.push_back(config);
+  }
+}
+
+void DynamicsNode::advertiseScene(std::size_t k) {
+  const std::string prefix = scene_configs_[k].name.empty() ? "" : scene_configs_[k].name + "/";
+  SceneEndpoints& e = endpoints_[k];
+  e.services.push_back(private_nh_.advertiseService<InverseDynamics::Request, InverseDynamics::Response>(
+      prefix + "inverse_dynamics", [this, k](auto& req, auto& res) { return onInverseDynamics(k, req, res); }));
+  e.services.push_back(private_nh_.advertiseService<ForwardDynamics::Request, ForwardDynamics::Response>(
+      prefix + "forward_dynamics", [this, k](auto& req, auto& res) { return onForwardDynamics(k, req, res); }));
+  e.services.push_back(private_nh_.advertiseService<MassMatrix::Request, MassMatrix::Response>(
+      prefix + "mass_matrix", [this, k](auto& req, auto& res) { return onMassMatrix(k, req, res); }));
+  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 10);
+}
+
+std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::string, Payload>& payloads) const {
   std::string urdf;
   if (!nh_.getParam("robot_description", urdf))
     throw std::runtime_error("parameter " + nh_.resolveName("robot_description") + " is not set");
   ModelBuildOptions options;
   options.gravity = read_gravity(private_nh_);
-  auto served = std::make_shared<ServedModel>();
-  served->model = std::make_shared<const Model<double>>(build_model_from_urdf_string(urdf, options));
-  served->decoder = std::make_unique<JointRequestDecoder>(*served->model);
-  served->cache = std::make_unique<JointStateCache>(served->decoder->jointNames());
-  served->root_frame = served->model->body_names[0];
-  served->robot_name = served->model->name;
-  served->version = next_model_version++;
-  return served;
+  auto robot = std::make_shared<ServedRobot>();
+  robot->bare = std::make_shared<const Model<double>>(build_model_from_urdf_string(urdf, options));
+  robot->full = std::make_shared<const Model<double>>(with_payloads(*robot->bare, payloads));
+  std::vector<std::string> joints(robot->bare->joint_names.begin() + 1, robot->bare->joint_names.end());
+  robot->cache = std::make_shared<JointStateCache>(joints);
+  robot->robot_name = robot->bare->name;
+  robot->root_frame = robot->bare->body_names[0];
+  return robot;
 }
 
-std::shared_ptr<const ServedModel> DynamicsNode::current() const {
+std::shared_ptr<const ServedRobot> DynamicsNode::withPayloads(const ServedRobot& robot,
+                                                              const std::map<std::string, Payload>& payloads) const {
+  auto loaded = std::make_shared<ServedRobot>(robot);
+  loaded->full = std::make_shared<const Model<double>>(with_payloads(*robot.bare, payloads));
+  return loaded;
+}
+
+std::shared_ptr<const ServedScene> DynamicsNode::buildScene(const std::shared_ptr<const ServedRobot>& robot,
+                                                            const SceneConfig& config) const {
+  auto scene = std::make_shared<ServedScene>();
+  scene->version = next_scene_version++;
+  scene->robot = robot;
+  const std::string who = config.name.empty() ? "the robot" : "scene '" + config.name + "'";
+  if (!config.error.empty()) {
+    scene->error = config.error;
+    return scene;
+  }
+  try {
+    const Model<double>& full = *robot->full;
+    Model<double> model;
+    if (!config.reduced) {
+      model = full;
+    } else {
+      Scene spec = config.root_link.empty()
+                       ? Scene{config.joints, {}}
+                       : scene_from_root_and_tips(full, RootTipScene{config.root_link, config.tip_links, {}});
+      std::set<std::string> kept(spec.kept_joints.begin(), spec.kept_joints.end());
+      if (coupled_mimic_joints_)  // a mimic joint follows a kept master
+        for (int i = 1; i < full.nbodies(); ++i)
+          if (full.joints[i].mimic.active() && kept.count(full.joint_names[full.joints[i].mimic.master_body]))
+            kept.insert(full.joint_names[i]);
+      spec.kept_joints.assign(kept.begin(), kept.end());
+      for (const std::string& name : spec.kept_joints)
+        if (!full.hasJoint(name)) throw SceneError("unknown joint '" + name + "' in the joints to keep");
+      JointStateCache::Snapshot state;
+      robot->cache->snapshot(state);
+      const std::vector<std::string>& names = robot->cache->jointNames();
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        if (kept.count(names[i])) continue;
+        const double position = state.position_known[i] ? state.position[i] : 0.0;  // latest joint state, else 0
+        spec.locked_positions[names[i]] = position;
+        scene->locks.emplace_back(static_cast<int>(i), position);
+      }
+      model = reduce_model(full, spec);
+    }
+    if (coupled_mimic_joints_) model = couple_mimic_joints(model);
+    scene->model = std::make_shared<const Model<double>>(std::move(model));
+    scene->decoder = std::make_unique<JointRequestDecoder>(*scene->model, robot->cache->jointNames());
+  } catch (const std::exception& e) {
+    scene->model.reset();
+    scene->error = who + " (" + config.parameter + "): " + e.what();
+  }
+  return scene;
+}
+
+void DynamicsNode::install(const std::shared_ptr<const ServedRobot>& robot) {
+  std::vector<std::shared_ptr<const ServedScene>> scenes;
+  for (const SceneConfig& config : scene_configs_) scenes.push_back(buildScene(robot, config));
   std::lock_guard<std::mutex> lock(model_mutex_);
-  return served_;
+  robot_ = robot;
+  scenes_ = std::move(scenes);
+  load_error_.clear();
+}
+
+std::shared_ptr<const ServedScene> DynamicsNode::scene(std::size_t index) const {
+  std::lock_guard<std::mutex> lock(model_mutex_);
+  return index < scenes_.size() ? scenes_[index] : nullptr;
 }
 
 template <class Response, class Compute>
-bool DynamicsNode::serve(Counters& counters, Response& res, Compute&& compute) {
+bool DynamicsNode::serve(std::size_t index, Counters& counters, Response& res, Compute&& compute) {
   ++counters.calls;
   res.success = false;
-  const std::shared_ptr<const ServedModel> served = current();
+  res.message.clear();
+  const std::shared_ptr<const ServedScene> served = scene(index);
   if (!served) {
     std::lock_guard<std::mutex> lock(model_mutex_);
     res.message = "no robot model is loaded: " + load_error_;
+  } else if (!served->model) {
+    res.message = served->error;
   } else {
     try {
-      res.message.clear();
-      compute(*served, workspace_for(*served));
+      compute(*served, workspace_for(index, *served));
       res.success = true;
     } catch (const std::exception& e) {
       res.message = e.what();
@@ -188,44 +347,44 @@ bool DynamicsNode::serve(Counters& counters, Response& res, Compute&& compute) {
   return true;  // the client always receives the body
 }
 
-bool DynamicsNode::onInverseDynamics(InverseDynamics::Request& req, InverseDynamics::Response& res) {
-  return serve(inverse_dynamics_, res, [&](const ServedModel& served, Workspace& ws) {
-    const bool with_wrenches = decode_dynamics_request(served, ws, req, "acceleration", req.acceleration);
-    const Model<double>& model = *served.model;
+bool DynamicsNode::onInverseDynamics(std::size_t k, InverseDynamics::Request& req, InverseDynamics::Response& res) {
+  return serve(k, endpoints_[k].inverse_dynamics, res, [&](const ServedScene& scene, Workspace& ws) {
+    const bool with_wrenches = decode_dynamics_request(scene, ws, req, "acceleration", req.acceleration);
+    const Model<double>& model = *scene.model;
     const Eigen::VectorXd& tau = with_wrenches ? rnea(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
                                                : rnea(model, *ws.data, ws.q, ws.qd, ws.x);
-    res.name = served.decoder->jointNames();
-    res.effort.assign(tau.data(), tau.data() + tau.size());
-    res.message = request_notes(served, ws, req.velocity);
+    res.name = scene.decoder->jointNames();
+    copy_to(tau, res.effort);
+    res.message = request_notes(scene, ws, req.velocity);
   });
 }
 
-bool DynamicsNode::onForwardDynamics(ForwardDynamics::Request& req, ForwardDynamics::Response& res) {
-  return serve(forward_dynamics_, res, [&](const ServedModel& served, Workspace& ws) {
-    const bool with_wrenches = decode_dynamics_request(served, ws, req, "effort", req.effort);
-    const Model<double>& model = *served.model;
-    const Eigen::VectorXd& qdd = with_wrenches ? aba(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
-                                               : aba(model, *ws.data, ws.q, ws.qd, ws.x);
-    res.name = served.decoder->jointNames();
-    res.acceleration.assign(qdd.data(), qdd.data() + qdd.size());
-    res.message = request_notes(served, ws, req.velocity);
+bool DynamicsNode::onForwardDynamics(std::size_t k, ForwardDynamics::Request& req, ForwardDynamics::Response& res) {
+  return serve(k, endpoints_[k].forward_dynamics, res, [&](const ServedScene& scene, Workspace& ws) {
+    const bool with_wrenches = decode_dynamics_request(scene, ws, req, "effort", req.effort);
+    const Model<double>& model = *scene.model;
+    const Eigen::VectorXd& qdd = with_wrenches ? forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
+                                               : forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x);
+    res.name = scene.decoder->jointNames();
+    copy_to(qdd, res.acceleration);
+    res.message = request_notes(scene, ws, req.velocity);
   });
 }
 
-bool DynamicsNode::onMassMatrix(MassMatrix::Request& req, MassMatrix::Response& res) {
-  return serve(mass_matrix_, res, [&](const ServedModel& served, Workspace& ws) {
-    decode_positions(served, ws, req.name, req.position);
-    const Eigen::MatrixXd& M = crba(*served.model, *ws.data, ws.q);
-    res.name = served.decoder->jointNames();
+bool DynamicsNode::onMassMatrix(std::size_t k, MassMatrix::Request& req, MassMatrix::Response& res) {
+  return serve(k, endpoints_[k].mass_matrix, res, [&](const ServedScene& scene, Workspace& ws) {
+    decode_positions(scene, ws, req.name, req.position);
+    const Eigen::MatrixXd& M = crba(*scene.model, *ws.data, ws.q);
+    res.name = scene.decoder->jointNames();
     res.mass_matrix.resize(M.size());
     Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(res.mass_matrix.data(), M.rows(),
                                                                                       M.cols()) = M;
-    append(res.message, served.decoder->limitWarnings(ws.q));
+    res.message = scene.decoder->limitWarnings(ws.q);
   });
 }
 
 bool DynamicsNode::onTransformWrench(TransformWrench::Request& req, TransformWrench::Response& res) {
-  return serve(transform_wrench_, res, [&](const ServedModel& served, Workspace& ws) {
+  return serve(0, transform_wrench_, res, [&](const ServedScene& scene, Workspace& ws) {
     const std::string& source = req.wrench.header.frame_id;
     if (source.empty()) throw std::runtime_error("wrench.header.frame_id is empty");
     if (req.target_frame.empty()) throw std::runtime_error("target_frame is empty");
@@ -233,10 +392,10 @@ bool DynamicsNode::onTransformWrench(TransformWrench::Request& req, TransformWre
     const ForceVector<double> f(Eigen::Vector3d(w.torque.x, w.torque.y, w.torque.z),
                                 Eigen::Vector3d(w.force.x, w.force.y, w.force.z));
     if (!f.toVector().allFinite()) throw std::runtime_error("wrench (frame '" + source + "') is not finite");
-    const bool uses_model = served.model->hasFrame(source) || served.model->hasFrame(req.target_frame);
-    if (uses_model) decode_positions(served, ws, req.name, req.position);
-    const PluckerTransform<double> X = frameTransform(served, req.target_frame, source, req.wrench.header.stamp,
-                                                      uses_model ? &ws.q : nullptr);
+    const bool uses_model = scene.model->hasFrame(source) || scene.model->hasFrame(req.target_frame);
+    if (uses_model) decode_positions(scene, ws, req.name, req.position);
+    const PluckerTransform<double> X =
+        frameTransform(scene, req.target_frame, source, req.wrench.header.stamp, uses_model ? &ws.q : nullptr);
     const ForceVector<double> f_target = X.apply(f);  // X* f (eq. 12): the moment gains r × f
     res.wrench.header.stamp = req.wrench.header.stamp;
     res.wrench.header.frame_id = req.target_frame;
@@ -246,30 +405,31 @@ bool DynamicsNode::onTransformWrench(TransformWrench::Request& req, TransformWre
     res.wrench.wrench.force.x = f_target.linear.x();
     res.wrench.wrench.force.y = f_target.linear.y();
     res.wrench.wrench.force.z = f_target.linear.z();
-    if (uses_model) append(res.message, served.decoder->limitWarnings(ws.q));
+    if (uses_model) res.message = scene.decoder->limitWarnings(ws.q);
   });
 }
 
-PluckerTransform<double> DynamicsNode::frameTransform(const ServedModel& served, const std::string& target,
+PluckerTransform<double> DynamicsNode::frameTransform(const ServedScene& scene, const std::string& target,
                                                       const std::string& source, const ros::Time& stamp,
                                                       const Eigen::VectorXd* q) const {
-  const Model<double>& model = *served.model;
+  const Model<double>& model = *scene.model;
   const bool source_in_model = model.hasFrame(source), target_in_model = model.hasFrame(target);
   if (!source_in_model && !target_in_model) return tfTransform(target, source, stamp);
-  Data<double>& data = *workspace_for(served).data;
+  Data<double>& data = *workspace_for(0, scene).data;
   forward_kinematics(model, data, *q);
   // ^FX_0 of a model frame; the base coordinates are those of the root link's frame.
   auto from_base = [&](const std::string& name) { return data.X_frame_base[model.frameIndex(name)]; };
   if (source_in_model && target_in_model) return from_base(target) * from_base(source).inverse();
   // One robot frame and one tf frame: chain through the robot's root link, which tf must know.
   const std::string& tf_frame = source_in_model ? target : source;
+  const std::string& root = scene.robot->root_frame;
   if (!tf_buffer_._frameExists(tf_frame))
     throw std::runtime_error("frame '" + tf_frame + "' is known neither to the robot model nor to tf2");
-  if (!tf_buffer_._frameExists(served.root_frame))
-    throw std::runtime_error("frame '" + tf_frame + "' is on tf2 but the robot's root link '" + served.root_frame +
+  if (!tf_buffer_._frameExists(root))
+    throw std::runtime_error("frame '" + tf_frame + "' is on tf2 but the robot's root link '" + root +
                              "' is not, so the two cannot be chained");
-  if (source_in_model) return tfTransform(target, served.root_frame, stamp) * from_base(source).inverse();
-  return from_base(target) * tfTransform(served.root_frame, source, stamp);
+  if (source_in_model) return tfTransform(target, root, stamp) * from_base(source).inverse();
+  return from_base(target) * tfTransform(root, source, stamp);
 }
 
 PluckerTransform<double> DynamicsNode::tfTransform(const std::string& target, const std::string& source,
@@ -291,26 +451,31 @@ PluckerTransform<double> DynamicsNode::tfTransform(const std::string& target, co
 }
 
 bool DynamicsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  std::shared_ptr<const ServedModel> loaded;
+  std::lock_guard<std::mutex> serialise(payload_mutex_);
+  std::shared_ptr<const ServedRobot> loaded;
+  std::shared_ptr<const ServedRobot> previous;
+  {
+    std::lock_guard<std::mutex> lock(model_mutex_);
+    previous = robot_;
+  }
   try {
-    loaded = loadFromParameters();
+    loaded = loadRobot(payloads_);
   } catch (const std::exception& e) {
     res.success = false;
-    const bool has_previous = current() != nullptr;
     res.message = std::string("reload failed: ") + e.what() +
-                  (has_previous ? " (the previous model is still served)" : " (no model is served)");
+                  (previous ? " (the previous model is still served)" : " (no model is served)");
     ROS_ERROR("dynamics: %s", res.message.c_str());
-    if (!has_previous) {
+    if (!previous) {
       std::lock_guard<std::mutex> lock(model_mutex_);
       load_error_ = e.what();
     }
     return true;
   }
   // Carry the joint states of joints that keep their names over to the new model.
-  if (const std::shared_ptr<const ServedModel> previous = current()) {
+  if (previous) {
     JointStateCache::Snapshot old;
     previous->cache->snapshot(old);
-    const std::vector<std::string>& names = previous->decoder->jointNames();
+    const std::vector<std::string>& names = previous->cache->jointNames();
     for (std::size_t i = 0; i < names.size(); ++i) {
       if (!old.position_known[i]) continue;
       std::vector<double> velocity;
@@ -318,13 +483,54 @@ bool DynamicsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
       loaded->cache->update({names[i]}, {old.position[i]}, velocity);
     }
   }
+  install(loaded);
+  res.success = true;
+  res.message = "loaded '" + loaded->robot_name + "' with " + std::to_string(loaded->bare->nv) + " joints";
+  for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
+    const auto s = scene(k);
+    if (s && !s->error.empty()) append(res.message, "but " + s->error);
+  }
+  ROS_INFO("dynamics: %s", res.message.c_str());
+  return true;
+}
+
+bool DynamicsNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& res) {
+  std::lock_guard<std::mutex> serialise(payload_mutex_);
+  res.success = false;
+  std::shared_ptr<const ServedRobot> robot;
   {
     std::lock_guard<std::mutex> lock(model_mutex_);
-    served_ = loaded;
-    load_error_.clear();
+    robot = robot_;
+    if (!robot) {
+      res.message = "no robot model is loaded: " + load_error_;
+      return true;
+    }
   }
+  if (!robot->bare->hasFrame(req.frame)) {
+    res.message = "unknown frame '" + req.frame + "' (not a link of the robot model)";
+    return true;
+  }
+  std::map<std::string, Payload> payloads = payloads_;
+  const geometry_msgs::Inertia& in = req.inertia;
+  if (in.m == 0.0) {
+    res.message = payloads.erase(req.frame) ? "payload removed from '" + req.frame + "'"
+                                            : "no payload on '" + req.frame + "' to remove";
+  } else {
+    Payload payload;
+    payload.mass = in.m;
+    payload.center_of_mass = Eigen::Vector3d(in.com.x, in.com.y, in.com.z);
+    payload.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    payloads[req.frame] = payload;
+    res.message = "payload of " + std::to_string(in.m) + " kg attached to '" + req.frame + "'";
+  }
+  try {
+    install(withPayloads(*robot, payloads));
+  } catch (const std::exception& e) {
+    res.message = e.what();
+    return true;
+  }
+  payloads_ = std::move(payloads);
   res.success = true;
-  res.message = "loaded '" + loaded->robot_name + "' with " + std::to_string(loaded->model->nv) + " joints";
   ROS_INFO("dynamics: %s", res.message.c_str());
   return true;
 }
@@ -332,10 +538,14 @@ bool DynamicsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
   ++joint_state_messages_;
   last_joint_state_time_ = ros::WallTime::now().toSec();
-  const std::shared_ptr<const ServedModel> served = current();
-  if (!served) return;
+  std::shared_ptr<const ServedRobot> robot;
+  {
+    std::lock_guard<std::mutex> lock(model_mutex_);
+    robot = robot_;
+  }
+  if (!robot) return;
   std::vector<std::string> unknown;
-  const std::string error = served->cache->update(msg->name, msg->position, msg->velocity, &unknown);
+  const std::string error = robot->cache->update(msg->name, msg->position, msg->velocity, &unknown);
   if (!error.empty()) {
     ++joint_state_drops_;
     ROS_WARN_THROTTLE(5.0, "dynamics: joint_states message dropped: %s", error.c_str());
@@ -348,19 +558,47 @@ void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
         ROS_WARN("dynamics: joint_states names joint '%s', which the robot model does not have; it is ignored",
                  name.c_str());
   }
-  if (!publish_computed_torques_) return;
-  Workspace& ws = workspace_for(*served);
-  served->cache->snapshot(ws.state);
-  if (!ws.state.complete) return;
-  const Eigen::VectorXd& tau = nonlinear_effects(*served->model, *ws.data, ws.state.position, ws.state.velocity);
-  sensor_msgs::JointState out;
-  out.header = msg->header;
-  out.name = served->decoder->jointNames();
-  out.position.assign(ws.state.position.data(), ws.state.position.data() + ws.state.position.size());
-  out.velocity.assign(ws.state.velocity.data(), ws.state.velocity.data() + ws.state.velocity.size());
-  out.effort.assign(tau.data(), tau.data() + tau.size());
-  computed_torques_pub_.publish(out);
-  ++torque_messages_;
+  for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
+    std::shared_ptr<const ServedScene> served = scene(k);
+    if (!served || !served->model || served->robot != robot) continue;
+    // Locked joints follow joint_states: rebuild the scene when one has moved.
+    if (!served->locks.empty()) {
+      Workspace& ws = workspace_for(k, *served);
+      robot->cache->snapshot(ws.state);
+      for (const auto& [index, position] : served->locks) {
+        if (ws.state.position_known[index] && std::abs(ws.state.position[index] - position) > relock_tolerance_) {
+          const std::string what = scene_configs_[k].name.empty() ? "the main scene" : "scene '" + scene_configs_[k].name + "'";
+          ROS_DEBUG("dynamics: locked joint '%s' moved by %g; rebuilding %s", robot->cache->jointNames()[index].c_str(),
+                    ws.state.position[index] - position, what.c_str());
+          std::shared_ptr<const ServedScene> rebuilt = buildScene(robot, scene_configs_[k]);
+          std::lock_guard<std::mutex> lock(model_mutex_);
+          if (scenes_[k] == served) scenes_[k] = rebuilt;  // unless a reload or payload change came first
+          served = rebuilt;
+          break;
+        }
+      }
+    }
+    if (!publish_computed_torques_ || !served->model || endpoints_.size() <= k) continue;
+    Workspace& ws = workspace_for(k, *served);
+    robot->cache->snapshot(ws.state);
+    if (!ws.state.complete) continue;
+    const JointRequestDecoder& decoder = *served->decoder;
+    try {
+      check(decoder.decode("position", {}, {}, {}, JointRequestDecoder::Default::LatestPosition, ws.state, ws.q));
+      check(decoder.decode("velocity", {}, {}, {}, JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
+      const Eigen::VectorXd& tau = nonlinear_effects(*served->model, *ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
+      sensor_msgs::JointState out;
+      out.header = msg->header;
+      out.name = decoder.jointNames();
+      copy_to(ws.q, out.position);
+      copy_to(ws.qd, out.velocity);
+      copy_to(tau, out.effort);
+      endpoints_[k].computed_torques.publish(out);
+      ++torque_messages_;
+    } catch (const std::exception& e) {
+      ROS_WARN_THROTTLE(5.0, "dynamics: no computed torques for this joint state: %s", e.what());
+    }
+  }
 }
 
 void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -375,22 +613,34 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const double last = last_joint_state_time_;
   status.add("joint_states age [s]", last > 0 ? now.toSec() - last : -1.0);
   status.add("joint_states dropped", static_cast<long>(joint_state_drops_));
-  for (const auto& [name, counters] : {std::pair<const char*, Counters*>{"inverse_dynamics", &inverse_dynamics_},
-                                       {"forward_dynamics", &forward_dynamics_},
-                                       {"mass_matrix", &mass_matrix_},
-                                       {"transform_wrench", &transform_wrench_}}) {
-    status.add(std::string(name) + " calls", static_cast<long>(counters->calls));
-    status.add(std::string(name) + " failures", static_cast<long>(counters->failures));
+  status.add("transform_wrench calls", static_cast<long>(transform_wrench_.calls));
+  status.add("transform_wrench failures", static_cast<long>(transform_wrench_.failures));
+  std::string scene_errors;
+  for (std::size_t k = 0; k < endpoints_.size(); ++k) {
+    const std::string prefix = scene_configs_[k].name.empty() ? "" : scene_configs_[k].name + "/";
+    for (const auto& [name, counters] : {std::pair<const char*, const Counters*>{"inverse_dynamics", &endpoints_[k].inverse_dynamics},
+                                         {"forward_dynamics", &endpoints_[k].forward_dynamics},
+                                         {"mass_matrix", &endpoints_[k].mass_matrix}}) {
+      status.add(prefix + name + " calls", static_cast<long>(counters->calls));
+      status.add(prefix + name + " failures", static_cast<long>(counters->failures));
+    }
+    const auto s = scene(k);
+    if (s && !s->error.empty()) append(scene_errors, s->error);
   }
-  const std::shared_ptr<const ServedModel> served = current();
-  if (!served) {
+  std::shared_ptr<const ServedRobot> robot;
+  {
     std::lock_guard<std::mutex> lock(model_mutex_);
-    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no robot model: " + load_error_);
-    return;
+    robot = robot_;
+    if (!robot) {
+      status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no robot model: " + load_error_);
+      return;
+    }
   }
-  diagnostics_.setHardwareID(served->robot_name);
-  status.add("joints", served->model->nv);
-  if (!served->cache->complete())
+  diagnostics_.setHardwareID(robot->robot_name);
+  status.add("joints", robot->bare->nv);
+  if (!scene_errors.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, scene_errors);
+  else if (!robot->cache->complete())
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "model loaded; waiting for joint_states of every joint");
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "model loaded; joint states complete");

@@ -1,19 +1,25 @@
 #include "spatial_dynamics/ros/joint_request_decoder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace spatial_dynamics {
 
-JointRequestDecoder::JointRequestDecoder(const Model<double>& model) {
+JointRequestDecoder::JointRequestDecoder(const Model<double>& model, const std::vector<std::string>& state_joint_names) {
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<double>& j = model.joints[i];
+    if (j.coupled) continue;  // follows its master: no coordinate of its own
     if (j.nv != 1) throw std::invalid_argument("joint '" + model.joint_names[i] + "': only 1-DoF joints are served");
+    const auto it = std::find(state_joint_names.begin(), state_joint_names.end(), model.joint_names[i]);
+    if (it == state_joint_names.end())
+      throw std::invalid_argument("joint '" + model.joint_names[i] + "' is not among the joint states");
+    index_[model.joint_names[i]] = static_cast<int>(names_.size());
     names_.push_back(model.joint_names[i]);
+    state_index_.push_back(static_cast<int>(it - state_joint_names.begin()));
     lower_.push_back(j.limits.position_lower);
     upper_.push_back(j.limits.position_upper);
-    index_[model.joint_names[i]] = j.idx_v;
   }
 }
 
@@ -59,11 +65,13 @@ std::string JointRequestDecoder::decode(const std::string& field, const std::vec
     if (given[i]) continue;
     switch (fallback) {
       case Default::Zero: out[i] = 0.0; break;
-      case Default::LatestVelocity: out[i] = state.velocity_known.empty() ? 0.0 : state.velocity[i]; break;
+      case Default::LatestVelocity:
+        out[i] = state.velocity_known.empty() ? 0.0 : state.velocity[state_index_[i]];
+        break;
       case Default::LatestPosition:
-        if (state.position_known.empty() || !state.position_known[i])
+        if (state.position_known.empty() || !state.position_known[state_index_[i]])
           return "no joint state yet for joint '" + names_[i] + "' (" + field + " not given in the request)";
-        out[i] = state.position[i];
+        out[i] = state.position[state_index_[i]];
         break;
     }
   }

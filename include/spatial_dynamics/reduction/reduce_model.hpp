@@ -27,18 +27,18 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
   const int n = full.nbodies();
   std::vector<char> kept(n, 0);
   for (const std::string& name : scene.kept_joints) {
-    if (!full.hasJoint(name)) throw SceneError("scene: unknown joint '" + name + "' in the joints to keep");
+    if (!full.hasJoint(name)) throw SceneError("unknown joint '" + name + "' in the joints to keep");
     kept[full.jointBody(name)] = 1;
   }
   for (const auto& [name, position] : scene.locked_positions) {
-    if (!full.hasJoint(name)) throw SceneError("scene: unknown joint '" + name + "' in the locked positions");
-    if (kept[full.jointBody(name)]) throw SceneError("scene: joint '" + name + "' is both kept and locked");
-    if (!std::isfinite(position)) throw SceneError("scene: locked position of joint '" + name + "' is not finite");
+    if (!full.hasJoint(name)) throw SceneError("unknown joint '" + name + "' in the locked positions");
+    if (kept[full.jointBody(name)]) throw SceneError("joint '" + name + "' is both kept and locked");
+    if (!std::isfinite(position)) throw SceneError("locked position of joint '" + name + "' is not finite");
   }
   for (int i = 1; i < n; ++i) {
     if (full.joints[i].type != JointType::Free) continue;
     if (scene.locked_positions.count(full.joint_names[i]))
-      throw SceneError("scene: the free root joint '" + full.joint_names[i] + "' cannot be locked");
+      throw SceneError("the free root joint '" + full.joint_names[i] + "' cannot be locked");
     kept[i] = 1;  // a floating base stays floating
   }
 
@@ -97,11 +97,11 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
 template <class S>
 Scene scene_from_root_and_tips(const Model<S>& full, const RootTipScene& spec) {
   auto body_of = [&](const std::string& link, const char* role) {
-    if (!full.hasFrame(link)) throw SceneError("scene: unknown " + std::string(role) + " link '" + link + "'");
+    if (!full.hasFrame(link)) throw SceneError("unknown " + std::string(role) + " link '" + link + "'");
     return full.frames[full.frameIndex(link)].body;
   };
   const int root = body_of(spec.root_link, "root");
-  if (spec.tip_links.empty()) throw SceneError("scene: no tip links given for root link '" + spec.root_link + "'");
+  if (spec.tip_links.empty()) throw SceneError("no tip links given for root link '" + spec.root_link + "'");
   std::set<int> kept;
   for (const std::string& tip : spec.tip_links) {
     int a = body_of(tip, "tip"), b = root;

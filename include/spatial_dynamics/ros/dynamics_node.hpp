@@ -1,13 +1,16 @@
 // The ROS node (DESIGN.md, layer 5): reads robot_description, merges joint_states, serves
-// inverse and forward dynamics, the mass matrix and wrench transforms, and publishes computed
-// torques. Message ↔ vector translation only: the arithmetic is the library's.
+// inverse and forward dynamics, the mass matrix and wrench transforms for the whole robot and for
+// configured scenes (reduced models), manages payloads, and publishes computed torques.
+// Message ↔ vector translation only: the arithmetic is the library's.
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -19,21 +22,43 @@
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
 #include "spatial_dynamics/MassMatrix.h"
+#include "spatial_dynamics/SetPayload.h"
 #include "spatial_dynamics/TransformWrench.h"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/reduction/payload.hpp"
 #include "spatial_dynamics/ros/joint_request_decoder.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
 
 namespace spatial_dynamics {
 
-/// One loaded robot: immutable model, its request decoder and its joint-state cache.
-struct ServedModel {
-  std::uint64_t version = 0;                 // unique per load; keys the per-thread workspaces
+/// A scene as the parameters configure it (fixed for the node's life).
+struct SceneConfig {
+  std::string name;                 // "" for the node's main services
+  std::string parameter;            // where it was configured, for messages
+  bool reduced = false;             // false: the whole robot
+  std::vector<std::string> joints;  // kept joints, or
+  std::string root_link;            // root link and tip links
+  std::vector<std::string> tip_links;
+  std::string error;                // a configuration error, reported by the scene's services
+};
+
+/// The robot as loaded: immutable, replaced on ~reload and on ~set_payload.
+struct ServedRobot {
+  std::shared_ptr<const Model<double>> bare;  // from robot_description, independent joints
+  std::shared_ptr<const Model<double>> full;  // with the payloads attached
+  std::shared_ptr<JointStateCache> cache;     // every joint of the robot; survives payload changes
+  std::string robot_name;
+  std::string root_frame;                     // the URDF root link: the frame tf chains through
+};
+
+/// One scene's model: immutable, replaced when a locked joint moves or the robot changes.
+struct ServedScene {
+  std::uint64_t version = 0;                  // unique per build; keys the per-thread workspaces
+  std::shared_ptr<const ServedRobot> robot;
   std::shared_ptr<const Model<double>> model;
   std::unique_ptr<JointRequestDecoder> decoder;
-  std::unique_ptr<JointStateCache> cache;
-  std::string robot_name;
-  std::string root_frame;                    // the URDF root link: the frame tf chains through
+  std::vector<std::pair<int, double>> locks;  // (joint-state index, locked position)
+  std::string error;                          // why the scene has no model ("" when it has one)
 };
 
 class DynamicsNode {
@@ -45,25 +70,38 @@ class DynamicsNode {
     std::atomic<long> calls{0};
     std::atomic<long> failures{0};
   };
+  struct SceneEndpoints {
+    std::vector<ros::ServiceServer> services;
+    ros::Publisher computed_torques;
+    Counters inverse_dynamics, forward_dynamics, mass_matrix;
+  };
 
-  /// Builds a ServedModel from the parameters; throws with the reason.
-  std::shared_ptr<const ServedModel> loadFromParameters() const;
-  std::shared_ptr<const ServedModel> current() const;
+  std::shared_ptr<const ServedRobot> loadRobot(const std::map<std::string, Payload>& payloads) const;
+  std::shared_ptr<const ServedRobot> withPayloads(const ServedRobot& robot,
+                                                  const std::map<std::string, Payload>& payloads) const;
+  std::shared_ptr<const ServedScene> buildScene(const std::shared_ptr<const ServedRobot>& robot,
+                                                const SceneConfig& config) const;
+  /// Replaces the robot and rebuilds every scene from it.
+  void install(const std::shared_ptr<const ServedRobot>& robot);
+  std::shared_ptr<const ServedScene> scene(std::size_t index) const;
+  void readSceneConfigs();
+  void advertiseScene(std::size_t index);
 
-  bool onInverseDynamics(InverseDynamics::Request& req, InverseDynamics::Response& res);
-  bool onForwardDynamics(ForwardDynamics::Request& req, ForwardDynamics::Response& res);
-  bool onMassMatrix(MassMatrix::Request& req, MassMatrix::Response& res);
+  bool onInverseDynamics(std::size_t scene, InverseDynamics::Request& req, InverseDynamics::Response& res);
+  bool onForwardDynamics(std::size_t scene, ForwardDynamics::Request& req, ForwardDynamics::Response& res);
+  bool onMassMatrix(std::size_t scene, MassMatrix::Request& req, MassMatrix::Response& res);
   bool onTransformWrench(TransformWrench::Request& req, TransformWrench::Response& res);
   bool onReload(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
   void onJointStates(const sensor_msgs::JointState::ConstPtr& msg);
 
-  /// Runs `compute` with the current model and this thread's workspace; turns every error into
-  /// success = false plus its message, and counts the call.
+  /// Runs `compute` with a scene's model and this thread's workspace for it; turns every error
+  /// into success = false plus its message, and counts the call.
   template <class Response, class Compute>
-  bool serve(Counters& counters, Response& res, Compute&& compute);
+  bool serve(std::size_t scene, Counters& counters, Response& res, Compute&& compute);
 
   /// ^{target}X_{source} for two frames, each a model frame (kinematics at q) or a tf2 frame.
-  PluckerTransform<double> frameTransform(const ServedModel& served, const std::string& target,
+  PluckerTransform<double> frameTransform(const ServedScene& served, const std::string& target,
                                           const std::string& source, const ros::Time& stamp,
                                           const Eigen::VectorXd* q) const;
   PluckerTransform<double> tfTransform(const std::string& target, const std::string& source,
@@ -73,19 +111,25 @@ class DynamicsNode {
 
   ros::NodeHandle nh_, private_nh_;
   bool publish_computed_torques_ = true;
+  bool coupled_mimic_joints_ = false;
+  double relock_tolerance_ = 1e-6;
 
-  mutable std::mutex model_mutex_;
-  std::shared_ptr<const ServedModel> served_;
+  std::vector<SceneConfig> scene_configs_;    // [0]: the main services
+  std::vector<SceneEndpoints> endpoints_;     // one per scene config
+
+  mutable std::mutex model_mutex_;            // guards the pointers below, never a computation
+  std::shared_ptr<const ServedRobot> robot_;
+  std::vector<std::shared_ptr<const ServedScene>> scenes_;
   std::string load_error_;
+  std::mutex payload_mutex_;                  // serialises ~set_payload and ~reload
+  std::map<std::string, Payload> payloads_;
 
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
 
-  ros::Publisher computed_torques_pub_;
   ros::Subscriber joint_states_sub_;
   std::vector<ros::ServiceServer> services_;
-
-  Counters inverse_dynamics_, forward_dynamics_, mass_matrix_, transform_wrench_;
+  Counters transform_wrench_;
   std::atomic<long> joint_state_messages_{0}, joint_state_drops_{0}, torque_messages_{0};
   std::atomic<double> last_joint_state_time_{0.0};
   std::mutex warned_mutex_;

@@ -2,7 +2,8 @@
 // Arrays follow the request's `name` when it is non-empty, else the model's order (and then must
 // have the model's length); an empty array means "left out". Joints left out take the latest
 // joint state (position, velocity) or zero (acceleration, effort). Every error names the field
-// and the joint. ROS-free: it takes plain vectors, so it is tested without a master.
+// and the joint. The model may be a reduced one: its joints are looked up by name in the cache of
+// the full robot's joint states. ROS-free: it takes plain vectors, so it is tested without a master.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,8 +21,9 @@ class JointRequestDecoder {
   /// What a joint left out of a request takes.
   enum class Default { LatestPosition, LatestVelocity, Zero };
 
-  /// For a fixed-base model with one coordinate per joint.
-  explicit JointRequestDecoder(const Model<double>& model);
+  /// The coordinates of `model` (a fixed-base model: one per joint with a coordinate of its
+  /// own), and where each joint sits in the joint-state cache's order `state_joint_names`.
+  JointRequestDecoder(const Model<double>& model, const std::vector<std::string>& state_joint_names);
 
   /// Maps request names to joint indices; fails on an unknown or repeated name.
   std::string resolve(const std::vector<std::string>& names, std::vector<int>& indices) const;
@@ -36,9 +38,12 @@ class JointRequestDecoder {
   std::string limitWarnings(const Eigen::VectorXd& q) const;
 
   const std::vector<std::string>& jointNames() const { return names_; }
+  /// Index of coordinate i in the joint-state cache.
+  int stateIndex(int i) const { return state_index_[i]; }
 
  private:
   std::vector<std::string> names_;
+  std::vector<int> state_index_;
   std::vector<double> lower_, upper_;
   std::unordered_map<std::string, int> index_;
 };
