@@ -46,6 +46,8 @@ show rosservice call /dynamics/inverse_dynamics "{name: [panda_joint2, panda_joi
 show rosservice call /dynamics/forward_dynamics "{name: [panda_joint4], effort: [5.0]}"
 show rosservice call /dynamics/mass_matrix "{}"
 show rosservice call /dynamics/transform_wrench "{wrench: {header: {frame_id: panda_hand}, wrench: {force: {x: 0.0, y: 0.0, z: -10.0}}}, target_frame: panda_link0}"
+show rosservice call /dynamics/set_payload "{frame: panda_hand, inertia: {m: 2.0, com: {x: 0.0, y: 0.0, z: 0.1}, ixx: 0.004, iyy: 0.004, izz: 0.002}}"
+show rosservice call /dynamics/set_payload "{frame: panda_hand, inertia: {m: 0.0}}"
 show rosservice call /dynamics/reload
 echo
 echo "== a bad request is answered with the culprit named"
