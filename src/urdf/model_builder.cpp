@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -72,6 +74,11 @@ class Builder {
   Model<double> build() {
     const urdf::LinkConstSharedPtr root = urdf_.getRoot();
     if (!root) throw ModelError("URDF has no root link");
+    check_one_parent_per_link();
+    if (options_.floating_base && urdf_.getJoint(options_.root_joint_name))
+      throw ModelError("joint '" + options_.root_joint_name +
+                       "': the URDF has a joint of this name, which is the floating base's root joint name (choose "
+                       "another ModelBuildOptions::root_joint_name)");
     model_.name = urdf_.getName();
     model_.gravity = options_.gravity;
     model_.floating_base = options_.floating_base;
@@ -89,6 +96,7 @@ class Builder {
     } else {
       visit(*root, 0, Transform::Identity());
     }
+    check_every_link_reached(*root);
     resolve_mimics();
     model_.finalize();
     return std::move(model_);
@@ -112,15 +120,44 @@ class Builder {
     return body;
   }
 
+  /// urdfdom accepts a link that is the child of two joints — and so joints that form a cycle
+  /// (a link its own ancestor), which the recursion below would follow forever.
+  void check_one_parent_per_link() const {
+    std::map<std::string, std::string> parent_joint;  // child link → joint
+    for (const auto& [name, joint] : urdf_.joints_) {
+      const auto [known, fresh] = parent_joint.emplace(joint->child_link_name, name);
+      if (!fresh)
+        throw ModelError("link '" + joint->child_link_name + "': it is the child of two joints, '" + known->second +
+                         "' and '" + name + "'");
+    }
+  }
+
+  /// With one parent per link, a link the tree does not reach hangs from joints that form a cycle
+  /// (urdfdom finds the root all the same).
+  void check_every_link_reached(const urdf::Link& root) const {
+    std::set<std::string> reached;
+    for (const Frame<double>& frame : model_.frames) reached.insert(frame.name);
+    for (const auto& [name, link] : urdf_.links_)
+      if (!reached.count(name))
+        throw ModelError("link '" + name + "': it is not connected to the root link '" + root.name +
+                         "' (the joints above it form a cycle)");
+  }
+
   /// Adds `link` (whose frame is ^LX_B relative to `body`) and everything below it.
   void visit(const urdf::Link& link, int body, const Transform& X_link_body) {
     if (model_.body_names[body].empty()) model_.body_names[body] = link.name;
     model_.frames.push_back({link.name, body, X_link_body});
     model_.inertia[body] += X_link_body.applyInverse(link_inertia(link));  // I_B += Xᵀ I_L X (eqs. 24, 26)
+    if (!model_.inertia[body].allFinite())  // finite inputs, but an overflow (m r² with a huge r)
+      throw ModelError("link '" + link.name + "': its inertia about the origin of link '" + model_.body_names[body] +
+                       "' is not finite (the inertial or joint origins are too large)");
     for (const urdf::JointSharedPtr& joint : link.child_joints) {
       const urdf::LinkConstSharedPtr child = urdf_.getLink(joint->child_link_name);
       if (!child) throw ModelError("joint '" + joint->name + "': child link '" + joint->child_link_name + "' not found");
       const Transform X_joint_body = transform_from_pose(joint->parent_to_joint_origin_transform) * X_link_body;
+      if (!X_joint_body.allFinite())
+        throw ModelError("joint '" + joint->name + "': its origin relative to link '" + model_.body_names[body] +
+                         "' is not finite (the joint origins are too large)");
       switch (joint->type) {
         case urdf::Joint::FIXED:
           visit(*child, body, X_joint_body);  // merged: the child link becomes a frame of this body

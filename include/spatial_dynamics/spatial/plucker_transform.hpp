@@ -24,6 +24,8 @@ struct PluckerTransform {
 
   static PluckerTransform Identity() { return PluckerTransform(); }
 
+  bool allFinite() const { return E.allFinite() && r.allFinite(); }
+
   /// From the pose of frame B in frame A: B's axes in A coordinates (R) and B's origin (p).
   static PluckerTransform FromPose(const Matrix3<S>& R, const Vector3<S>& p) { return {R.transpose(), p}; }
 

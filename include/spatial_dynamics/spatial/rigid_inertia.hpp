@@ -23,6 +23,11 @@ struct RigidInertia {
 
   static RigidInertia Zero() { return RigidInertia(); }
 
+  /// Whether all ten parameters are finite (x − x is 0 exactly for a finite x).
+  bool allFinite() const {
+    return mass - mass == S(0) && first_moment.allFinite() && rotational_inertia.allFinite();
+  }
+
   /// From mass, centre of mass c and rotational inertia Ī_c about c (eq. 25).
   static RigidInertia FromMassCenterInertia(const S& m, const Vector3<S>& c, const Matrix3<S>& inertia_about_com) {
     const Matrix3<S> cx = skew(c);

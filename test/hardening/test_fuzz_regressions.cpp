@@ -1,0 +1,135 @@
+// Regression tests for what the fuzz targets (fuzz/) found: each input below once crashed the URDF
+// builder, gave a model with non-finite or duplicate entries, or made an algorithm return a
+// non-finite result without an error. Each must now be an exception whose message names the culprit.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "spatial_dynamics/algorithms.hpp"
+#include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
+#include "spatial_dynamics/reduction/payload.hpp"
+#include "spatial_dynamics/reduction/reduce_model.hpp"
+#include "spatial_dynamics/urdf/model_builder.hpp"
+#include "test_utils.hpp"
+
+namespace {
+
+namespace sd = spatial_dynamics;
+using Eigen::VectorXd;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMax = std::numeric_limits<double>::max();
+
+std::string link_xml(const std::string& name, const std::string& inertial_origin = "0 0 0") {
+  return "<link name='" + name + "'><inertial><origin xyz='" + inertial_origin +
+         "'/><mass value='1'/><inertia ixx='0.1' ixy='0' ixz='0' iyy='0.1' iyz='0' izz='0.1'/></inertial></link>";
+}
+
+std::string joint_xml(const std::string& name, const std::string& type, const std::string& parent, const std::string& child,
+                  const std::string& extra = "") {
+  return "<joint name='" + name + "' type='" + type + "'><parent link='" + parent + "'/><child link='" + child +
+         "'/><axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/>" + extra + "</joint>";
+}
+
+std::string robot(const std::string& body) { return "<robot name='r'>" + body + "</robot>"; }
+
+/// The ModelError message of building `xml`; fails the test when it is accepted or throws anything else.
+std::string rejection(const std::string& xml, const sd::ModelBuildOptions& options = {}) {
+  try {
+    sd::build_model_from_urdf_string(xml, options);
+  } catch (const sd::ModelError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected ModelError, got: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "accepted:\n" << xml;
+  return "";
+}
+
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE(std::string(text).find(part), std::string::npos) << "'" << (text) << "' lacks '" << (part) << "'"
+
+/// The std::domain_error message of `call`; fails the test when it returns.
+template <class F>
+std::string domain_error_of(F&& call) {
+  try {
+    call();
+  } catch (const std::domain_error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "a non-finite result was returned without an error";
+  return "";
+}
+
+sd::Model<double> panda() { return sd::build_model_from_urdf_file(sd_test::robot_path("panda.urdf")); }
+
+}  // namespace
+
+// ---- URDF builder ---------------------------------------------------------------------------
+
+TEST(FuzzRegression, JointsFormingACycleBelowTheRootAreRejectedNotFollowedForever) {
+  // root → A → B → A: urdfdom accepts it (A has two parent joints); the builder recursed until
+  // the stack overflowed.
+  const std::string msg = rejection(robot(link_xml("root") + link_xml("A") + link_xml("B") + joint_xml("j1", "revolute", "root", "A") +
+                                          joint_xml("j2", "revolute", "A", "B") + joint_xml("j3", "revolute", "B", "A")));
+  EXPECT_CONTAINS(msg, "link 'A'");
+  EXPECT_CONTAINS(msg, "child of two joints, 'j1' and 'j3'");
+}
+
+TEST(FuzzRegression, LinkWithTwoParentJointsIsRejectedNotDuplicated) {
+  // root → A, root → B → A: A became two bodies and two frames of the same name.
+  const std::string msg = rejection(robot(link_xml("root") + link_xml("A") + link_xml("B") + joint_xml("j1", "revolute", "root", "A") +
+                                          joint_xml("j2", "revolute", "root", "B") + joint_xml("j3", "fixed", "B", "A")));
+  EXPECT_CONTAINS(msg, "link 'A'");
+  EXPECT_CONTAINS(msg, "two joints");
+}
+
+TEST(FuzzRegression, LinksOnACycleApartFromTheRootAreRejectedNotDropped) {
+  // B ⇄ C beside the tree root → A: urdfdom finds the single root; B and C vanished silently.
+  const std::string msg = rejection(robot(link_xml("root") + link_xml("A") + link_xml("B") + link_xml("C") +
+                                          joint_xml("j1", "revolute", "root", "A") + joint_xml("j2", "revolute", "B", "C") +
+                                          joint_xml("j3", "revolute", "C", "B")));
+  EXPECT_CONTAINS(msg, "link 'B'");
+  EXPECT_CONTAINS(msg, "not connected to the root link 'root'");
+}
+
+TEST(FuzzRegression, FloatingRootJointNameTakenByAUrdfJointIsRejected) {
+  // Two joints named root_joint: looking the name up found the URDF joint, not the free root.
+  sd::ModelBuildOptions floating;
+  floating.floating_base = true;
+  const std::string xml = robot(link_xml("base") + link_xml("l1") + joint_xml("root_joint", "revolute", "base", "l1"));
+  const std::string msg = rejection(xml, floating);
+  EXPECT_CONTAINS(msg, "joint 'root_joint'");
+  EXPECT_CONTAINS(msg, "root_joint_name");
+  EXPECT_NO_THROW(sd::build_model_from_urdf_string(xml));  // a fixed base has no root joint
+  floating.root_joint_name = "free_root";
+  EXPECT_NO_THROW(sd::build_model_from_urdf_string(xml, floating));
+}
+
+TEST(FuzzRegression, InertialOriginSoFarThatTheInertiaOverflowsIsRejected) {
+  // m r² = 1e400: finite URDF numbers, an infinite inertia in the model.
+  const std::string msg = rejection(robot(link_xml("base") + link_xml("l1", "1e200 0 0") + joint_xml("j1", "revolute", "base", "l1")));
+  EXPECT_CONTAINS(msg, "link 'l1'");
+  EXPECT_CONTAINS(msg, "not finite");
+}
+
+TEST(FuzzRegression, FixedJointOriginSoFarThatTheMergedInertiaOverflowsIsRejected) {
+  const std::string msg = rejection(robot(link_xml("base") + link_xml("far") +
+                                          "<joint name='weld' type='fixed'><parent link='base'/><child link='far'/>"
+                                          "<origin xyz='0 1e200 0'/></joint>"));
+  EXPECT_CONTAINS(msg, "link 'far'");
+  EXPECT_CONTAINS(msg, "not finite");
+}
+
+TEST(FuzzRegression, JointOriginsAddingUpToInfinityAreRejected) {
+  const std::string weld = "<origin xyz='1.5e308 0 0'/>";
+  const std::string msg =
+      rejection(robot(link_xml("base") + "<link name='a'/><link name='b'/>" +
+                      "<joint name='w1' type='fixed'><parent link='base'/><child link='a'/>" + weld + "</joint>" +
+                      "<joint name='w2' type='fixed'><parent link='a'/><child link='b'/>" + weld + "</joint>"));
+  EXPECT_CONTAINS(msg, "'w2'");
+  EXPECT_CONTAINS(msg, "not finite");
+}
