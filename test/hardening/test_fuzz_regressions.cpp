@@ -133,3 +133,47 @@ TEST(FuzzRegression, JointOriginsAddingUpToInfinityAreRejected) {
   EXPECT_CONTAINS(msg, "'w2'");
   EXPECT_CONTAINS(msg, "not finite");
 }
+
+// ---- payloads, reduction, coupling ------------------------------------------------------------
+
+TEST(FuzzRegression, PayloadWhoseInertiaOverflowsIsRejected) {
+  const sd::Model<double> model = panda();
+  sd::Payload far{1.0, Eigen::Vector3d(1e200, 0, 0), Eigen::Matrix3d::Identity()};
+  try {
+    sd::with_payloads(model, {{"panda_hand", far}});
+    ADD_FAILURE() << "accepted";
+  } catch (const sd::SceneError& e) {
+    EXPECT_CONTAINS(e.what(), "'panda_hand'");
+    EXPECT_CONTAINS(e.what(), "not finite");
+  }
+}
+
+TEST(FuzzRegression, LockedPositionSoLargeThatTheReducedInertiaOverflowsIsRejected) {
+  const sd::Model<double> model = sd::build_model_from_urdf_string(
+      robot(link_xml("base") + link_xml("slide") + link_xml("arm") + joint_xml("lift", "prismatic", "base", "slide") +
+            joint_xml("turn", "revolute", "slide", "arm")));
+  sd::Scene scene{{"turn"}, {{"lift", kMax}}};
+  try {
+    sd::reduce_model(model, scene);
+    ADD_FAILURE() << "accepted";
+  } catch (const sd::SceneError& e) {
+    EXPECT_CONTAINS(e.what(), "not finite");
+    EXPECT_CONTAINS(e.what(), "locked position");
+  }
+  scene.locked_positions["lift"] = 0.5;  // an ordinary one still works
+  EXPECT_EQ(sd::reduce_model(model, scene).nv, 1);
+}
+
+TEST(FuzzRegression, MimicChainWhoseMultiplierOverflowsIsRejected) {
+  const sd::Model<double> model = sd::build_model_from_urdf_string(
+      robot(link_xml("base") + link_xml("a") + link_xml("b") + link_xml("c") + joint_xml("j1", "revolute", "base", "a") +
+            joint_xml("j2", "revolute", "a", "b", "<mimic joint='j1' multiplier='1e200'/>") +
+            joint_xml("j3", "revolute", "b", "c", "<mimic joint='j2' multiplier='1e200'/>")));
+  try {
+    sd::couple_mimic_joints(model);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_CONTAINS(e.what(), "joint 'j3'");
+    EXPECT_CONTAINS(e.what(), "not finite");
+  }
+}

@@ -27,6 +27,9 @@ Model<S> couple_mimic_joints(const Model<S>& independent) {
       k = k * next.multiplier;
       master = next.master_body;
     }
+    if (!(k - k == S(0)) || !(offset - offset == S(0)))  // finite multipliers whose product overflows
+      throw std::invalid_argument("joint '" + coupled.joint_names[i] +
+                                  "': the multiplier or offset of its mimic chain is not finite");
     j.mimic = MimicRelation<S>{master, k, offset};
     j.coupled = true;
   }

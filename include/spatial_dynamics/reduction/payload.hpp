@@ -26,13 +26,17 @@ inline RigidInertia<double> payload_inertia(const std::string& frame, const Payl
   return RigidInertia<double>::FromMassCenterInertia(payload.mass, payload.center_of_mass, payload.inertia);
 }
 
-/// The model with every payload added to the body carrying its frame.
+/// The model with every payload added to the body carrying its frame. Throws SceneError naming the
+/// frame for an unknown frame, an unphysical payload, or a body inertia that would overflow.
 inline Model<double> with_payloads(const Model<double>& model, const std::map<std::string, Payload>& payloads) {
   Model<double> loaded = model;
   for (const auto& [frame_name, payload] : payloads) {
     if (!model.hasFrame(frame_name)) throw SceneError("payload: unknown frame '" + frame_name + "'");
     const Frame<double>& frame = model.frames[model.frameIndex(frame_name)];
     loaded.inertia[frame.body] += frame.X_frame_body.applyInverse(payload_inertia(frame_name, payload));  // I_B += Xᵀ I_F X
+    if (!loaded.inertia[frame.body].allFinite())  // finite inputs, but an overflow (m c² with a huge c)
+      throw SceneError("payload on frame '" + frame_name + "': the inertia of link '" + model.body_names[frame.body] +
+                       "' with it is not finite (the mass or the centre of mass is too large)");
   }
   return loaded;
 }

@@ -22,8 +22,19 @@ class SceneError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+namespace detail {
+/// Finite locked positions can still overflow what depends on them (a prismatic joint locked at
+/// 1e300 m puts its subtree's inertia at 1e600): that is an error naming the body, not a model.
+template <class S>
+[[noreturn]] void throw_too_large(const Model<S>& full, int body, const std::string& what) {
+  throw SceneError("locking the joints makes the " + what + " of link '" + full.body_names[body] +
+                   "' not finite (a locked position is too large)");
+}
+}  // namespace detail
+
 template <class S>
 Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
+  using detail::throw_too_large;
   const int n = full.nbodies();
   std::vector<char> kept(n, 0);
   for (const std::string& name : scene.kept_joints) {
@@ -69,6 +80,7 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
       reduced.parent.push_back(owner[lambda]);
       reduced.joints.push_back(joint);
       reduced.X_tree.push_back(full.X_tree[i] * to_owner[lambda]);  // ^JX_λ ^λX_owner(λ)
+      if (!reduced.X_tree.back().allFinite()) throw_too_large(full, i, "joint frame");
       reduced.inertia.push_back(RigidInertia<S>::Zero());
       reduced.body_names.push_back(full.body_names[i]);
       reduced.joint_names.push_back(full.joint_names[i]);
@@ -81,9 +93,14 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
       to_owner[i] = X_up * to_owner[lambda];  // ^iX_λ ^λX_owner
     }
   }
-  for (int i = 0; i < n; ++i) reduced.inertia[owner[i]] += to_owner[i].applyInverse(full.inertia[i]);  // eqs. 24, 26
-  for (const Frame<S>& frame : full.frames)
+  for (int i = 0; i < n; ++i) {
+    reduced.inertia[owner[i]] += to_owner[i].applyInverse(full.inertia[i]);  // eqs. 24, 26
+    if (!reduced.inertia[owner[i]].allFinite()) throw_too_large(full, i, "inertia");
+  }
+  for (const Frame<S>& frame : full.frames) {
     reduced.frames.push_back({frame.name, owner[frame.body], frame.X_frame_body * to_owner[frame.body]});
+    if (!reduced.frames.back().X_frame_body.allFinite()) throw_too_large(full, frame.body, "frame '" + frame.name + "'");
+  }
   // Mimic records survive when the master is kept.
   for (int i = 1; i < reduced.nbodies(); ++i) {
     MimicRelation<S>& mimic = reduced.joints[i].mimic;
