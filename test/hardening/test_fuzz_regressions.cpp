@@ -177,3 +177,56 @@ TEST(FuzzRegression, MimicChainWhoseMultiplierOverflowsIsRejected) {
     EXPECT_CONTAINS(e.what(), "not finite");
   }
 }
+
+// ---- algorithms: a non-finite result is an error naming the coordinate ------------------------
+
+TEST(FuzzRegression, NonFiniteInputsGiveErrorsNotNonFiniteResults) {
+  const sd::Model<double> model = panda();
+  sd::Data<double> data(model);
+  const VectorXd zero = VectorXd::Zero(model.nv);
+  VectorXd q = VectorXd::Zero(model.nq);
+  q[model.joints[model.jointBody("panda_joint3")].idx_q] = kNaN;
+  EXPECT_CONTAINS(domain_error_of([&] { sd::rnea(model, data, q, zero, zero); }), "inverse dynamics");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::aba(model, data, q, zero, zero); }), "forward dynamics");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::crba(model, data, q); }), "mass matrix");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::forward_kinematics(model, data, q); }), "panda_link3");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::kinetic_energy(model, data, q, zero); }), "forward kinematics");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::frame_jacobian(model, data, q, model.frameIndex("panda_hand"),
+                                                           sd::ReferenceFrame::Local); }),
+                  "forward kinematics");
+  const VectorXd q0 = VectorXd::Zero(model.nq);
+  VectorXd tau = zero;
+  tau[model.joints[model.jointBody("panda_joint5")].idx_v] = kNaN;
+  const std::string msg = domain_error_of([&] { sd::aba(model, data, q0, zero, tau); });
+  EXPECT_CONTAINS(msg, "forward dynamics: the acceleration for 'panda_joint");
+  EXPECT_CONTAINS(msg, "not finite");
+  const sd::Model<double> coupled = sd::couple_mimic_joints(model);  // forward dynamics through the CRBA
+  sd::Data<double> coupled_data(coupled);
+  VectorXd tau_c = VectorXd::Zero(coupled.nv);
+  tau_c[0] = kNaN;
+  EXPECT_CONTAINS(domain_error_of([&] {
+                    sd::forward_dynamics(coupled, coupled_data, VectorXd::Zero(coupled.nq), VectorXd::Zero(coupled.nv),
+                                         tau_c);
+                  }),
+                  "forward dynamics");
+}
+
+TEST(FuzzRegression, OverflowingResultsAreErrorsNamingTheJoint) {
+  // A payload of the largest finite mass on the hand: its weight overflows every torque upstream.
+  const sd::Model<double> loaded =
+      sd::with_payloads(panda(), {{"panda_hand", sd::Payload{kMax, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity()}}});
+  sd::Data<double> data(loaded);
+  const VectorXd q = VectorXd::Zero(loaded.nq), zero = VectorXd::Zero(loaded.nv);
+  const std::string msg = domain_error_of([&] { sd::gravity_torques(loaded, data, q); });
+  EXPECT_CONTAINS(msg, "inverse dynamics: the joint force for 'panda_joint");
+  EXPECT_CONTAINS(msg, "overflows");
+  // Finite but absurd velocities overflow v ×* I v on an ordinary model.
+  const sd::Model<double> model = panda();
+  sd::Data<double> d(model);
+  const VectorXd fast = VectorXd::Constant(model.nv, 1e200);
+  EXPECT_CONTAINS(domain_error_of([&] { sd::nonlinear_effects(model, d, q, fast); }), "inverse dynamics");
+  EXPECT_CONTAINS(domain_error_of([&] { sd::kinetic_energy(model, d, q, fast); }), "kinetic energy");
+  // Ordinary inputs are unaffected.
+  EXPECT_NO_THROW(sd::rnea(model, d, q, zero, zero));
+  EXPECT_NO_THROW(sd::aba(model, d, q, zero, zero));
+}

@@ -98,11 +98,14 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
 
 }  // namespace detail
 
-/// Joint accelerations q̈ produced by joint forces τ at (q, q̇) under gravity. Result in data.qdd.
+/// Joint accelerations q̈ produced by joint forces τ at (q, q̇) under gravity. Result in data.qdd;
+/// a non-finite one throws std::domain_error naming the joint (input_checks.hpp).
 template <class S>
 const VectorX<S>& aba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                       const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
-  return detail::aba_impl(model, data, q, qd, tau, static_cast<const ForceVector<S>*>(nullptr));
+  detail::aba_impl(model, data, q, qd, tau, static_cast<const ForceVector<S>*>(nullptr));
+  detail::check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
+  return data.qdd;
 }
 
 /// As above with external forces f_ext[i] acting on body i (body coordinates; entry 0 unused).
@@ -111,7 +114,9 @@ const VectorX<S>& aba(const Model<S>& model, Data<S>& data, const ConstVectorRef
                       const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
                       const std::vector<ForceVector<S>>& f_ext) {
   detail::check_external_forces(model, f_ext);
-  return detail::aba_impl(model, data, q, qd, tau, f_ext.data());
+  detail::aba_impl(model, data, q, qd, tau, f_ext.data());
+  detail::check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
+  return data.qdd;
 }
 
 }  // namespace spatial_dynamics

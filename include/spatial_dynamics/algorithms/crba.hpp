@@ -12,7 +12,7 @@ namespace spatial_dynamics {
 
 /// M(q) in data.M. Entries coupling joints on different branches are structural zeros: Data
 /// creates M zeroed and this function never writes them (unless the model has coupled joints,
-/// when M is zeroed and accumulated).
+/// when M is zeroed and accumulated). A non-finite entry throws std::domain_error naming its column.
 template <class S>
 const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   update_joint_transforms(model, data, q);
@@ -56,6 +56,7 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
       }
     }
   }
+  detail::check_finite_result(model, "mass matrix: the column", data.M);
   return data.M;
 }
 

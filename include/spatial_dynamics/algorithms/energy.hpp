@@ -15,6 +15,7 @@ S kinetic_energy(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& 
   forward_kinematics(model, data, q, qd);
   S T(0);
   for (int i = 1; i < model.nbodies(); ++i) T += kinetic_energy(model.inertia[i], data.v[i]);
+  detail::check_finite_value(model, "kinetic energy", Eigen::Matrix<S, 1, 1>::Constant(T));
   return T;
 }
 
@@ -25,6 +26,7 @@ ForceVector<S> total_momentum(const Model<S>& model, Data<S>& data, const ConstV
   forward_kinematics(model, data, q, qd);
   ForceVector<S> h = ForceVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) h += data.X_base[i].applyInverse(momentum(model.inertia[i], data.v[i]));
+  detail::check_finite_value(model, "total momentum", h.toVector());
   return h;
 }
 

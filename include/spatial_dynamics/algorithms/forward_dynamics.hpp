@@ -25,6 +25,7 @@ const VectorX<S>& crba_forward_dynamics(const Model<S>& model, Data<S>& data, co
   if (data.llt.info() != Eigen::Success)
     throw std::domain_error("the mass matrix is not positive definite (a massless subtree?): forward dynamics is undefined");
   data.llt.solveInPlace(data.qdd);
+  check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
   return data.qdd;
 }
 

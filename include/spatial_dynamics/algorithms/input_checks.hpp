@@ -1,5 +1,6 @@
-// Size checks shared by the algorithms: a wrong-length vector is an error that says which
-// argument and what length was expected, never an out-of-bounds read.
+// Checks shared by the algorithms: a wrong-length vector is an error that says which argument
+// and what length was expected, never an out-of-bounds read; a non-finite result is an error
+// that names the first coordinate concerned, never a return value.
 #pragma once
 
 #include <stdexcept>
@@ -37,6 +38,44 @@ void check_external_forces(const Model<S>& model, const std::vector<ForceVector<
     throw std::invalid_argument("external forces: " + std::to_string(f_ext.size()) +
                                 " given; the model expects one per body (" +
                                 std::to_string(model.nbodies()) + ")");
+}
+
+inline const char* non_finite_reason() {
+  return " is not finite: an input or a model parameter is not finite, or so large that the computation overflows";
+}
+
+/// `what` (+ " for '<coordinate>'") is not finite: std::domain_error. Only on the error path.
+template <class S>
+[[noreturn]] void throw_non_finite(const Model<S>& model, const char* what, Eigen::Index coordinate) {
+  std::string where;
+  if (coordinate >= 0) {
+    const std::vector<std::string> names = model.velocityNames();
+    if (coordinate < static_cast<Eigen::Index>(names.size())) where = " for '" + names[coordinate] + "'";
+  }
+  throw std::domain_error(std::string(what) + where + non_finite_reason());
+}
+
+/// A result indexed by velocity coordinate — a vector (τ, q̈) or a matrix by column (M, J) —
+/// must be finite: with finite inputs a non-finite entry is an overflow, and it is reported
+/// (naming the first coordinate concerned) rather than returned.
+template <class S, class Derived>
+void check_finite_result(const Model<S>& model, const char* what, const Eigen::DenseBase<Derived>& x) {
+  if (x.allFinite()) return;
+  Eigen::Index coordinate = -1;
+  if (x.cols() == 1) {
+    for (Eigen::Index k = 0; k < x.rows() && coordinate < 0; ++k)
+      if (!x.row(k).allFinite()) coordinate = k;
+  } else {
+    for (Eigen::Index k = 0; k < x.cols() && coordinate < 0; ++k)
+      if (!x.col(k).allFinite()) coordinate = k;
+  }
+  throw_non_finite(model, what, coordinate);
+}
+
+/// The same for a value not tied to a coordinate (an energy, a momentum).
+template <class S, class Derived>
+void check_finite_value(const Model<S>& model, const char* what, const Eigen::DenseBase<Derived>& x) {
+  if (!x.allFinite()) throw_non_finite(model, what, -1);
 }
 
 }  // namespace detail

@@ -31,6 +31,7 @@ const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const Co
     for (int k = 0; k < joint.nv; ++k)
       data.J.col(joint.idx_v + k) += scale * X_Fj.apply(joint_subspace_column(joint, k)).toVector();
   }
+  detail::check_finite_result(model, "frame Jacobian: the column", data.J);
   return data.J;
 }
 

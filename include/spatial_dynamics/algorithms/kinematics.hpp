@@ -17,14 +17,24 @@ void update_joint_transforms(const Model<S>& model, Data<S>& data, const ConstVe
 }
 
 /// Body poses ^iX_0 = ^iX_λ ^λX_0 and frame poses ^FX_0 = ^FX_B ^BX_0. The pose of body i in
-/// the base is (data.X_base[i].rotation(), data.X_base[i].translation()).
+/// the base is (data.X_base[i].rotation(), data.X_base[i].translation()). A non-finite pose (a
+/// non-finite q, or an overflow) throws std::domain_error naming the body or frame.
 template <class S>
 void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   update_joint_transforms(model, data, q);
   data.X_base[0] = PluckerTransform<S>::Identity();
-  for (int i = 1; i < model.nbodies(); ++i) data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
-  for (std::size_t k = 0; k < model.frames.size(); ++k)
+  for (int i = 1; i < model.nbodies(); ++i) {
+    data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
+    if (!data.X_base[i].allFinite())
+      throw std::domain_error("forward kinematics: the pose of body '" + model.body_names[i] + "'" +
+                              detail::non_finite_reason());
+  }
+  for (std::size_t k = 0; k < model.frames.size(); ++k) {
     data.X_frame_base[k] = model.frames[k].X_frame_body * data.X_base[model.frames[k].body];
+    if (!data.X_frame_base[k].allFinite())
+      throw std::domain_error("forward kinematics: the pose of frame '" + model.frames[k].name + "'" +
+                              detail::non_finite_reason());
+  }
 }
 
 /// Poses as above, plus body velocities data.v (body coordinates).
@@ -36,6 +46,9 @@ void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorR
   data.v[0] = MotionVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) {
     data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model.joints[i], qd.data());
+    if (!data.v[i].angular.allFinite() || !data.v[i].linear.allFinite())
+      throw std::domain_error("forward kinematics: the velocity of body '" + model.body_names[i] + "'" +
+                              detail::non_finite_reason());
   }
 }
 

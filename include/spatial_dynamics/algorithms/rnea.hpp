@@ -46,11 +46,14 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
 
 }  // namespace detail
 
-/// Joint forces τ that produce accelerations q̈ at (q, q̇) under gravity. Result in data.tau.
+/// Joint forces τ that produce accelerations q̈ at (q, q̇) under gravity. Result in data.tau;
+/// a non-finite one throws std::domain_error naming the joint (input_checks.hpp).
 template <class S>
 const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  return detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+  detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+  detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
+  return data.tau;
 }
 
 /// As above with external forces f_ext[i] acting on body i (body coordinates; entry 0 unused).
@@ -59,7 +62,9 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
                        const std::vector<ForceVector<S>>& f_ext) {
   detail::check_external_forces(model, f_ext);
-  return detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
+  detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
+  detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
+  return data.tau;
 }
 
 /// Gravity torques g(q) = ID(q, 0, 0).
