@@ -44,6 +44,32 @@ class CollectorScope {
   CollectorScope& operator=(const CollectorScope&) = delete;
 };
 
+/// Where `text` stops being well-formed UTF-8 (RFC 3629) or holds a NUL byte; npos when it is fine.
+/// XML is UTF-8 unless it says otherwise, and urdfdom's XML parser (TinyXML 2.6) skips a multi-byte
+/// character's announced length without looking: a lead byte near the end makes it read past the
+/// text (a heap over-read, found by fuzzing). Such text is rejected before it reaches the parser.
+std::size_t first_invalid_utf8(const std::string& text) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  for (std::size_t k = 0; k < text.size();) {
+    const unsigned char c = byte(k);
+    int more = 0;
+    unsigned char low = 0x80, high = 0xBF;  // the range of the first continuation byte
+    if (c == 0) return k;
+    if (c < 0x80) more = 0;
+    else if (c >= 0xC2 && c <= 0xDF) more = 1;
+    else if (c >= 0xE0 && c <= 0xEF) { more = 2; if (c == 0xE0) low = 0xA0; if (c == 0xED) high = 0x9F; }
+    else if (c >= 0xF0 && c <= 0xF4) { more = 3; if (c == 0xF0) low = 0x90; if (c == 0xF4) high = 0x8F; }
+    else return k;
+    if (text.size() - k <= static_cast<std::size_t>(more)) return k;  // cut off by the end of the text
+    for (int m = 1; m <= more; ++m) {
+      const unsigned char n = byte(k + m);
+      if (n < (m == 1 ? low : 0x80) || n > (m == 1 ? high : 0xBF)) return k;
+    }
+    k += 1 + more;
+  }
+  return std::string::npos;
+}
+
 Transform transform_from_pose(const urdf::Pose& pose) {
   const Eigen::Quaterniond rotation(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
   const Eigen::Vector3d position(pose.position.x, pose.position.y, pose.position.z);
@@ -229,6 +255,13 @@ Model<double> build_model(const urdf::ModelInterface& urdf_model, const ModelBui
 }
 
 Model<double> build_model_from_urdf_string(const std::string& urdf_xml, const ModelBuildOptions& options) {
+  const std::size_t bad = first_invalid_utf8(urdf_xml);
+  if (bad != std::string::npos) {
+    std::ostringstream why;
+    why << "malformed URDF: " << (urdf_xml[bad] == '\0' ? "a NUL byte" : "text that is not UTF-8") << " at byte " << bad
+        << " (0x" << std::hex << static_cast<int>(static_cast<unsigned char>(urdf_xml[bad])) << ")";
+    throw ModelError(why.str());
+  }
   urdf::ModelInterfaceSharedPtr parsed;
   ParseErrorCollector collector;
   {

@@ -134,6 +134,19 @@ TEST(FuzzRegression, JointOriginsAddingUpToInfinityAreRejected) {
   EXPECT_CONTAINS(msg, "not finite");
 }
 
+TEST(FuzzRegression, TextThatIsNotUtf8IsRejectedBeforeTheXmlParserReadsPastIt) {
+  // urdfdom's XML parser (TinyXML 2.6) skips a multi-byte character's announced length without
+  // looking: a lead byte at the end of the text made it read past the end (heap over-read).
+  const std::string xml = robot(link_xml("base") + link_xml("l1") + joint_xml("j1", "revolute", "base", "l1"));
+  std::string msg = rejection(xml + "<x \xf2");
+  EXPECT_CONTAINS(msg, "malformed URDF: text that is not UTF-8 at byte " + std::to_string(xml.size() + 3));
+  EXPECT_CONTAINS(rejection(xml + "\xef"), "not UTF-8");                          // cut-off 3-byte character
+  EXPECT_CONTAINS(rejection(robot("<link name='\xc0\xaf'/>")), "not UTF-8");      // overlong encoding
+  EXPECT_CONTAINS(rejection(std::string("<robot\0 name='r'/>", 19)), "a NUL byte at byte 6");
+  EXPECT_NO_THROW(sd::build_model_from_urdf_string(  // well-formed UTF-8 is fine
+      "<robot name='r\xc3\xa9'><link name='\xe2\x88\x86'/><!-- \xf0\x9f\xa4\x96 --></robot>"));
+}
+
 // ---- payloads, reduction, coupling ------------------------------------------------------------
 
 TEST(FuzzRegression, PayloadWhoseInertiaOverflowsIsRejected) {
