@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages the package needs to build, run and test.
+# Installs the Debian 12 packages the package needs to build, run and test, plus any packages
+# given as arguments (scripts/install_fuzzing_dependencies.sh passes clang's).
 # apt-get runs as root, or through sudo otherwise; nothing is installed when all are present.
 set -euo pipefail
 
@@ -15,6 +16,7 @@ packages=(
   python3-rospy python3-roslaunch python3-rosservice python3-rostopic
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-std-srvs
 )
+packages+=("$@")
 
 missing=()
 for p in "${packages[@]}"; do
