@@ -86,7 +86,7 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
     if (j.nv == 1) {
       const S qdd = data.D_inv[i](0, 0) * (data.u[i][0] - data.U[i].col(0).dot(ap));  // q̈ = D⁻¹(u − Uᵀ a')
       data.qdd[j.idx_v] = qdd;
-      data.a[i] = a_prime + joint_motion(j, &qdd);                                    // a_i = a' + S q̈
+      data.a[i] = a_prime + one_dof_motion(j, qdd);                                    // a_i = a' + S q̈
     } else {
       const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);
       data.qdd.template segment<6>(j.idx_v) = qdd;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <unordered_map>
@@ -18,11 +19,18 @@ class JointStateCache {
     Eigen::VectorXd velocity;            // zero for a joint whose publisher sends no velocity
     std::vector<char> position_known;    // per joint: a position has been received
     std::vector<char> velocity_known;    // per joint: a velocity has been received
+    std::vector<double> received;        // per joint: when its last value arrived (steady clock, s)
+    double now = 0;                      // when the snapshot was taken (steady clock, s)
+    double max_age = 0;                  // the cache's age limit for values taken from it (s)
     bool complete = false;               // every joint's position is known
   };
 
-  /// `joint_names` in the model's joint order.
-  explicit JointStateCache(std::vector<std::string> joint_names);
+  /// `joint_names` in the model's joint order; values older than `max_age_seconds` are stale.
+  explicit JointStateCache(std::vector<std::string> joint_names,
+                           double max_age_seconds = std::numeric_limits<double>::infinity());
+
+  /// The steady clock the cache stamps values with, in seconds.
+  static double steadyNow();
 
   /// Merges one message. Returns an empty string when it was merged, otherwise why it was
   /// dropped (mismatched lengths, a non-finite value, a duplicate name); the previous state
@@ -38,6 +46,7 @@ class JointStateCache {
 
  private:
   const std::vector<std::string> names_;
+  const double max_age_;
   std::unordered_map<std::string, int> index_;
   mutable std::mutex mutex_;
   Snapshot state_;
