@@ -146,7 +146,7 @@ void DynamicsNode::advertiseScene(std::size_t k) {
       prefix + "forward_dynamics", [this, k](auto& req, auto& res) { return onForwardDynamics(k, req, res); }));
   e.services.push_back(private_nh_.advertiseService<MassMatrix::Request, MassMatrix::Response>(
       prefix + "mass_matrix", [this, k](auto& req, auto& res) { return onMassMatrix(k, req, res); }));
-  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 10);
+  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 100);
 }
 
 std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::string, Payload>& payloads) const {
