@@ -8,13 +8,9 @@ seconds="${1:-60}"
 clients="${2:-8}"
 bash scripts/install_dependencies.sh
 bash scripts/build.sh dynamics_node load_test
-export PATH="/usr/bin:$PATH"
-set +u
-# shellcheck disable=SC1091
-source build/devel/setup.bash
-set -u
 port="${SPATIAL_DYNAMICS_LOAD_PORT:-11611}"
-export ROS_MASTER_URI="http://localhost:$port" ROS_HOSTNAME=localhost
+# shellcheck source=scripts/ros_env.sh
+source scripts/ros_env.sh "$port"
 roslaunch -p "$port" spatial_dynamics dynamics.launch >build/load_test_node.log 2>&1 &
 launch_pid=$!
 trap 'kill -INT $launch_pid 2>/dev/null; wait $launch_pid 2>/dev/null || true' EXIT
