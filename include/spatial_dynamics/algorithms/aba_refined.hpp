@@ -8,7 +8,8 @@
 // or max_iterations corrections were made. Each step gains a factor of about κ(M)·ε_S; the
 // limit is the accuracy of the residual, about κ(M)·ε_W relative instead of ABA's κ(M)·ε_S.
 // Since ID is linear in q̈, r_{k+1} = r_k − M δ_k: only the first residual needs the velocity
-// and gravity terms; the later ones are mass-matrix products (one outward and one inward pass).
+// and gravity terms; the later ones are mass-matrix products (one outward and one inward pass),
+// which can even be done in S once δ_k is small enough (see subtract_mass_matrix_product_narrow).
 #pragma once
 
 #include <algorithm>
@@ -236,6 +237,26 @@ void subtract_mass_matrix_product(RefinementWorkspace<S, W>& ws) {
   }
 }
 
+/// r ← r − M δ with the product in S (the model's transforms in data.X_up), for a correction so
+/// small that the product's rounding, ε_S ‖M‖ ‖δ‖, stays below the wide residual's ε_W ‖M‖ ‖x‖.
+template <class S, class W>
+void subtract_mass_matrix_product_narrow(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws) {
+  const int n = model.nbodies();
+  ws.a[0] = MotionVector<S>::Zero();
+  for (int i = 1; i < n; ++i) {
+    const Joint<S>& j = model.joints[i];
+    ws.a[i] = data.X_up[i].apply(ws.a[model.parent[i]]) + joint_motion(j, ws.delta.data() + j.idx_v);  // a = X a_λ + S δ
+    ws.p[i] = model.inertia[i] * ws.a[i];                                                            // f = I a
+  }
+  S column[6];
+  for (int i = n - 1; i >= 1; --i) {
+    const Joint<S>& j = model.joints[i];
+    joint_project(j, ws.p[i], column);
+    for (int k = 0; k < j.nv; ++k) ws.residual_wide[j.idx_v + k] -= W(column[k]);
+    if (model.parent[i] > 0) ws.p[model.parent[i]] += data.X_up[i].applyInverse(ws.p[i]);         // f_λ += Xᵀ f
+  }
+}
+
 /// δ = M⁻¹ r by the factorisation the last aba() call left in data (U = Iᴬ S, D⁻¹, X_up):
 /// ABA's passes 2 and 3 with no velocity, no gravity and joint forces r (RBDA Table 7.1).
 template <class S, class W>
@@ -290,6 +311,7 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
   }
   detail::wide_residual(ws, tau);
   const S eps = Eigen::NumTraits<S>::epsilon();
+  const S eps_ratio = S(Eigen::NumTraits<W>::epsilon() / W(eps));
   S previous = std::numeric_limits<S>::infinity();
   ws.iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
@@ -306,7 +328,9 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
     for (int k = 0; k < model.nv; ++k) x_size += S(ws.x_wide[k]) * S(ws.x_wide[k]);
     if (size <= eps * sqrt(x_size)) break;  // the correction is below the result's resolution
     previous = size;
-    detail::subtract_mass_matrix_product(ws);  // r_{k+1} = r_k − M δ_k
+    // r_{k+1} = r_k − M δ_k: in W, or in S once ‖δ‖ ≤ (ε_W/ε_S) ‖x‖ makes that as accurate.
+    if (size <= eps_ratio * sqrt(x_size)) detail::subtract_mass_matrix_product_narrow(model, data, ws);
+    else detail::subtract_mass_matrix_product(ws);
   }
   for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(ws.x_wide[k]);
   return data.qdd;
