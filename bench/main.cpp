@@ -1,7 +1,7 @@
 // Speed against error: every algorithm of spatial_dynamics (float and double) and of the
 // comparators found at build time (KDL, DART, MuJoCo) on the same models and the same random
 // states, timed per call and checked against the float128 reference. Writes results.csv,
-// results.md and (through plot.py) benchmark.png into --out DIR.
+// results.md, and through plot.py and summary.py benchmark.png and summary.md, into --out DIR.
 //
 //   benchmark [--model PATH]... [--floating] [--quick] [--out DIR]
 #include <algorithm>
@@ -65,6 +65,7 @@ struct Row {
   std::string library, algorithm, method, model, base, scalar;
   int dof = 0;
   double ns_median = 0, ns_min = 0, ns_max = 0, max_err = 0, median_err = 0, allocs = 0;
+  double max_err_first_100 = 0;  // over the first 100 states, as the anchor table was measured
   long calls = 0;
   int repeats = 0, error_states = 0;
   std::string failure;  // non-empty: the call failed (message), no figures
@@ -285,6 +286,7 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
       }
       row.error_states = static_cast<int>(t.errors.size());
       row.max_err = *std::max_element(t.errors.begin(), t.errors.end());
+      row.max_err_first_100 = *std::max_element(t.errors.begin(), t.errors.begin() + std::min<std::size_t>(100, t.errors.size()));
       row.median_err = median(t.errors);
       time_calls(*l.adapter, a, settings.states, settings, row);
       rows.push_back(row);
@@ -332,8 +334,9 @@ const Row* find(const std::vector<Row>& rows, const std::string& lib, const std:
 
 std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
   std::ostringstream s;
-  s << "| model | base | RNEA | CRBA | ≤ 4e-15 | ABA | best anchor FD | best comparator FD (this run) | ABA ok | "
-       "refined FD | time refined / ABA | refined ok |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  s << "| model | base | RNEA | CRBA | ≤ 4e-15 | ABA | ABA, first 100 states | best anchor FD (100 states) | "
+       "best comparator FD (this run) | ABA ok | refined FD | time refined / ABA | refined ok |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ModelSpec& m : specs) {
     const Row* rnea = find(rows, "spatial_dynamics", "rnea", m.name, m.base);
     const Row* crba = find(rows, "spatial_dynamics", "crba", m.name, m.base);
@@ -356,6 +359,7 @@ std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec
     const bool refined_ok = hard ? ref->max_err * 1000 <= target : (ref->max_err <= 1e-15 && ratio <= 4.0);
     s << "| " << m.name << " | " << m.base << " | " << format_g(rnea->max_err) << " | " << format_g(crba->max_err) << " | "
       << (robot ? (id_ok ? "yes" : "**no**") : "—") << " | " << format_g(aba->max_err) << " | "
+      << format_g(aba->max_err_first_100) << " | "
       << (anchor != anchor_fd().end() ? format_g(anchor->second) : "—") << " | "
       << (std::isfinite(best_peer) ? format_g(best_peer) : "—") << " | " << (aba_ok ? "yes" : "**no**") << " | "
       << format_g(ref->max_err) << " | " << format_g(ratio, 3) << " | "
@@ -456,9 +460,13 @@ int main(int argc, char** argv) {
               std::chrono::duration<double>(Clock::now() - start).count());
   const std::string plot = std::string("/usr/bin/python3 ") + SD_BENCH_PLOT_SCRIPT + " " + settings.out + "/results.csv " +
                            settings.out + "/benchmark.png";
-  if (std::system(plot.c_str()) != 0) {
-    std::fprintf(stderr, "plotting failed: %s\n", plot.c_str());
-    return 1;
+  const std::string summary = std::string("/usr/bin/python3 ") + SD_BENCH_SUMMARY_SCRIPT + " " + settings.out +
+                              "/results.csv " + settings.out + "/summary.md";
+  for (const std::string& command : {plot, summary}) {
+    if (std::system(command.c_str()) != 0) {
+      std::fprintf(stderr, "failed: %s\n", command.c_str());
+      return 1;
+    }
   }
   return 0;
 }

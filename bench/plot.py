@@ -22,22 +22,30 @@ libraries = {
 }
 markers = {"rnea": "o", "aba": "s", "aba_refined": "*", "crba": "^", "crba_cholesky": "D", "gravity": "v", "fk": "x"}
 FLOOR = 1e-19  # an exact result (error 0) is drawn here
+CEILING = 1e2  # errors above (float solves of the 1000-body chain) are drawn here, as open markers
 
 fig, ax = plt.subplots(figsize=(12, 8))
 for r in rows:
     label, colour = libraries.get((r["library"], r["scalar"]), (r["library"], "black"))
     err = float(r["max_rel_err"])
-    err = FLOOR if err == 0 else (1.0 if not math.isfinite(err) else err)
-    ax.scatter(float(r["ns_median"]), err, color=colour, marker=markers.get(r["algorithm"], "."), s=36 if r["algorithm"] != "aba_refined" else 90,
-               alpha=0.75, linewidths=1.2)
+    clipped = not math.isfinite(err) or err > CEILING
+    err = FLOOR if err == 0 else (CEILING if clipped else err)
+    marker = markers.get(r["algorithm"], ".")
+    ax.scatter(float(r["ns_median"]), err, marker=marker, s=36 if r["algorithm"] != "aba_refined" else 90, alpha=0.75,
+               linewidths=1.2, color=colour if not clipped or marker == "x" else "none",
+               edgecolors=colour if marker != "x" else None)
 ax.set_xscale("log")
 ax.set_yscale("log")
 ax.set_xlabel("time per call, median [ns] (log scale)")
 ax.set_ylabel("max norm-wise relative error vs float128 reference (log scale)")
 ax.set_title("Speed against error: every library x algorithm x model (shared robots, random chains, tree, mass-span chain)")
 ax.grid(True, which="major", alpha=0.3)
+ax.set_ylim(top=CEILING * 10)
 ax.axhline(2.2e-16, color="grey", linestyle=":", linewidth=1)
-ax.text(ax.get_xlim()[0] * 1.1, 2.6e-16, "double ε", color="grey", fontsize=8)
+ax.text(ax.get_xlim()[1] / 1.2, 3e-16, "double ε", color="grey", fontsize=8, ha="right")
+ax.axhline(CEILING, color="grey", linestyle="--", linewidth=0.8)
+ax.text(ax.get_xlim()[1] / 1.2, CEILING * 1.5, "errors > 1e2 or non-finite, drawn here (open markers)", color="grey",
+        fontsize=8, ha="right")
 present_libs = {(r["library"], r["scalar"]) for r in rows}
 present_algs = {r["algorithm"] for r in rows}
 handles = [Line2D([], [], color=c, marker="o", linestyle="", label=l) for k, (l, c) in libraries.items() if k in present_libs]
