@@ -22,6 +22,7 @@
 #include "reference.hpp"
 #include "spatial_dynamics_adapter.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
+#include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 #include "urdf_text.hpp"
 #ifdef SD_BENCH_WITH_KDL
@@ -59,6 +60,9 @@ struct Settings {
 
 struct ModelSpec {
   std::string name, base, path;  // base: "fixed" or "floating"
+  /// Non-empty: the reduced scene of the file's robot that keeps these joints (the others locked
+  /// at 0); only spatial_dynamics has scenes, so the comparators sit out.
+  std::vector<std::string> kept_joints = {};
 };
 
 struct Row {
@@ -85,6 +89,9 @@ std::vector<ModelSpec> default_models(const Settings& settings) {
   for (const char* r : {"double_pendulum", "panda", "ur5", "solo12", "talos"})
     specs.push_back({r, "fixed", robots + "/" + r + ".urdf"});
   for (const char* r : {"solo12", "talos"}) specs.push_back({r, "floating", robots + "/" + r + ".urdf"});
+  std::vector<std::string> left_arm;
+  for (int k = 1; k <= 7; ++k) left_arm.push_back("arm_left_" + std::to_string(k) + "_joint");
+  specs.push_back({"talos_left_arm", "fixed", robots + "/talos.urdf", left_arm});  // against "talos" above
   const std::string dir = settings.out + "/models";
   fs::create_directories(dir);
   auto add = [&](const std::string& name, const std::vector<sd::synthetic::Link>& links) {
@@ -179,6 +186,7 @@ std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpe
   std::vector<Loaded> out;
   out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
   out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
+  if (!spec.kept_joints.empty()) return out;  // a reduced scene: spatial_dynamics only
   const std::string text = without_geometry(read_file(spec.path));
   const std::string dir = settings.out + "/comparator_urdf";
   fs::create_directories(dir);
@@ -211,7 +219,10 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
                std::vector<std::string>& load_failures) {
   sd::ModelBuildOptions options;
   options.floating_base = spec.base == "floating";
-  const sd::Model<double> model = sd::build_model_from_urdf_file(spec.path, options);
+  const sd::Model<double> model =
+      spec.kept_joints.empty()
+          ? sd::build_model_from_urdf_file(spec.path, options)
+          : sd::reduce_model(sd::build_model_from_urdf_file(spec.path, options), sd::Scene{spec.kept_joints, {}});
   const auto t0 = Clock::now();
   const std::vector<State> states = random_states(model, settings.states, 12345);
   std::vector<Loaded> adapters = load_adapters(model, spec, settings);
