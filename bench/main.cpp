@@ -348,7 +348,8 @@ std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec
       if (r.library != "spatial_dynamics" && r.model == m.name && r.base == m.base && r.failure.empty() &&
           (r.algorithm == "aba" || r.algorithm == "crba_cholesky"))
         best_peer = std::min(best_peer, r.max_err);
-    const bool robot = m.path.find(SD_ROBOTS_DIR) == 0;
+    std::error_code ec;
+    const bool robot = fs::equivalent(fs::path(m.path).parent_path(), SD_ROBOTS_DIR, ec);  // a shared robot
     const auto anchor = anchor_fd().find(m.base == "fixed" ? m.name : "");
     const double target = anchor != anchor_fd().end() ? anchor->second : best_peer;
     const bool id_ok = rnea->max_err <= 4e-15 && crba->max_err <= 4e-15;
