@@ -179,13 +179,11 @@ std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpe
   std::vector<Loaded> out;
   out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
   out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
-  const std::string text = without_geometry(read_file(spec.path));
-  const std::string dir = settings.out + "/comparator_urdf";
+  // Comparators get the URDF without geometry (meshes they would try to open).
+  [[maybe_unused]] const std::string text = without_geometry(read_file(spec.path));
+  [[maybe_unused]] const std::string dir = settings.out + "/comparator_urdf";
   fs::create_directories(dir);
-  std::string why;
-  (void)text;
-  (void)why;
-  (void)dir;
+  [[maybe_unused]] std::string why;
 #ifdef SD_BENCH_WITH_KDL
   why.clear();
   auto kdl = make_kdl_adapter(model, text, why);
