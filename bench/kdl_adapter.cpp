@@ -47,10 +47,6 @@ class KdlAdapter : public Adapter {
     }
     for (int i = 1; i < model.nbodies(); ++i) ours_to_kdl_.push_back(kdl_index_.at(model.joint_names[i]));
     const unsigned n = tree_.getNrOfJoints();
-    q_.resize(n);
-    qd_.resize(n);
-    qdd_.resize(n);
-    tau_.resize(n);
     out_.resize(n);
     M_.resize(n);
   }
@@ -156,7 +152,7 @@ class KdlAdapter : public Adapter {
   KDL::WrenchMap no_wrenches_;
   std::vector<KDL::Frame> frames_;
   std::vector<KDL::Frame> frames_tree_ = std::vector<KDL::Frame>(model_.nbodies());
-  KDL::JntArray q_, qd_, qdd_, tau_, out_, zero_ = KDL::JntArray(tree_.getNrOfJoints());
+  KDL::JntArray out_, zero_ = KDL::JntArray(tree_.getNrOfJoints());
   KDL::JntSpaceInertiaMatrix M_;
   std::vector<KDL::JntArray> states_q_, states_qd_, states_qdd_, states_tau_;
 };

@@ -187,13 +187,11 @@ std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpe
   out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
   out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
   if (!spec.kept_joints.empty()) return out;  // a reduced scene: spatial_dynamics only
-  const std::string text = without_geometry(read_file(spec.path));
-  const std::string dir = settings.out + "/comparator_urdf";
+  // Comparators get the URDF without geometry (meshes they would try to open).
+  [[maybe_unused]] const std::string text = without_geometry(read_file(spec.path));
+  [[maybe_unused]] const std::string dir = settings.out + "/comparator_urdf";
   fs::create_directories(dir);
-  std::string why;
-  (void)text;
-  (void)why;
-  (void)dir;
+  [[maybe_unused]] std::string why;
 #ifdef SD_BENCH_WITH_KDL
   why.clear();
   auto kdl = make_kdl_adapter(model, text, why);
@@ -359,7 +357,8 @@ std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec
       if (r.library != "spatial_dynamics" && r.model == m.name && r.base == m.base && r.failure.empty() &&
           (r.algorithm == "aba" || r.algorithm == "crba_cholesky"))
         best_peer = std::min(best_peer, r.max_err);
-    const bool robot = m.path.find(SD_ROBOTS_DIR) == 0;
+    std::error_code ec;
+    const bool robot = fs::equivalent(fs::path(m.path).parent_path(), SD_ROBOTS_DIR, ec);  // a shared robot
     const auto anchor = anchor_fd().find(m.base == "fixed" ? m.name : "");
     const double target = anchor != anchor_fd().end() ? anchor->second : best_peer;
     const bool id_ok = rnea->max_err <= 4e-15 && crba->max_err <= 4e-15;
