@@ -99,8 +99,12 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   }
   endpoints_ = std::vector<SceneEndpoints>(scene_configs_.size());
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) advertiseScene(k);
-  joint_states_sub_ = nh_.subscribe("joint_states", 100, &DynamicsNode::onJointStates, this,
-                                    ros::TransportHints().tcpNoDelay());
+  ros::NodeHandle state_nh(nh_);
+  state_nh.setCallbackQueue(&joint_state_queue_);
+  joint_states_sub_ = state_nh.subscribe("joint_states", 1000, &DynamicsNode::onJointStates, this,
+                                         ros::TransportHints().tcpNoDelay());
+  joint_state_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &joint_state_queue_);
+  joint_state_spinner_->start();
   services_.push_back(private_nh_.advertiseService("transform_wrench", &DynamicsNode::onTransformWrench, this));
   services_.push_back(private_nh_.advertiseService("reload", &DynamicsNode::onReload, this));
   services_.push_back(private_nh_.advertiseService("set_payload", &DynamicsNode::onSetPayload, this));
@@ -146,7 +150,7 @@ void DynamicsNode::advertiseScene(std::size_t k) {
       prefix + "forward_dynamics", [this, k](auto& req, auto& res) { return onForwardDynamics(k, req, res); }));
   e.services.push_back(private_nh_.advertiseService<MassMatrix::Request, MassMatrix::Response>(
       prefix + "mass_matrix", [this, k](auto& req, auto& res) { return onMassMatrix(k, req, res); }));
-  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 100);
+  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 1000);
 }
 
 std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::string, Payload>& payloads) const {

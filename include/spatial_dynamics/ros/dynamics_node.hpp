@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Trigger.h>
@@ -116,7 +117,11 @@ class DynamicsNode {
   tf2_ros::TransformListener tf_listener_;
   TfFrames tf_frames_{tf_buffer_};
 
+  // joint_states are served by a thread of their own, so that a burst of service calls never
+  // delays (or, through a full queue, drops) a joint state and its computed torques.
+  ros::CallbackQueue joint_state_queue_;
   ros::Subscriber joint_states_sub_;
+  std::unique_ptr<ros::AsyncSpinner> joint_state_spinner_;
   std::vector<ros::ServiceServer> services_;
   Counters transform_wrench_;
   std::atomic<long> joint_state_messages_{0}, joint_state_drops_{0}, torque_messages_{0};
