@@ -9,7 +9,7 @@
 #   run_fuzzers.sh replay [TARGET ...]
 #       run each target once over every file of its corpus and seeds, without mutating (what CI
 #       does); the last line is "N passed, N failed", one test per target.
-# TARGET: urdf_builder, scene_reduction (default: both). Needs clang-14 and libclang-rt-14-dev
+# TARGET: urdf_builder, scene_reduction, service_handlers (default: all three). Needs clang-14 and libclang-rt-14-dev
 # (scripts/install_fuzzing_dependencies.sh installs them).
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -31,9 +31,9 @@ elif [[ "${1:-}" =~ ^[0-9]+$ ]]; then
   shift
 fi
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction)
+[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction service_handlers)
 for t in "${targets[@]}"; do
-  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder or scene_reduction)"
+  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder, scene_reduction or service_handlers)"
 done
 
 bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dependencies failed"
@@ -62,6 +62,7 @@ for t in "${targets[@]}"; do
   # robots are replayed whole), the scene target reads a few hundred bytes at most.
   case "$t" in
     urdf_builder) options=(-max_len=8192 "-dict=fuzz/$t/$t.dict") ;;
+    service_handlers) options=(-max_len=4096) ;;  # arrays up to thousands of entries
     *) options=(-max_len=512) ;;
   esac
   log="$build_dir/logs/$t.$mode.log"

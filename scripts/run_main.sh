@@ -6,14 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
 bash scripts/build.sh all
-export PATH="/usr/bin:$PATH"
-set +u  # the ROS environment scripts read unset variables
-# shellcheck disable=SC1091
-source build/devel/setup.bash
-set -u
-# A master of our own on a port of its own, so that a running ROS system is left alone.
 port="${SPATIAL_DYNAMICS_DEMO_PORT:-11411}"
-export ROS_MASTER_URI="http://localhost:$port" ROS_HOSTNAME=localhost
+# shellcheck source=scripts/ros_env.sh
+source scripts/ros_env.sh "$port"
 
 roslaunch -p "$port" spatial_dynamics demo.launch >build/demo.log 2>&1 &
 launch_pid=$!

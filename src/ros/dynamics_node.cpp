@@ -7,7 +7,6 @@
 #include <ros/names.h>
 #include <tf2/exceptions.h>
 
-#include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
@@ -15,41 +14,7 @@
 namespace spatial_dynamics {
 namespace {
 
-/// Per-thread buffers of one scene, rebuilt when the scene's model changes (Data is allocated
-/// once per model).
-struct Workspace {
-  std::uint64_t version = 0;
-  std::unique_ptr<Data<double>> data;
-  JointStateCache::Snapshot state;
-  std::vector<int> indices;
-  Eigen::VectorXd q, qd, x;
-  std::vector<ForceVector<double>> f_ext;
-};
-
-Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene) {
-  thread_local std::vector<Workspace> workspaces;
-  if (workspaces.size() <= scene_index) workspaces.resize(scene_index + 1);
-  Workspace& ws = workspaces[scene_index];
-  if (ws.version != scene.version) {
-    ws.data = std::make_unique<Data<double>>(*scene.model);
-    ws.f_ext.assign(scene.model->nbodies(), ForceVector<double>::Zero());
-    ws.version = scene.version;
-  }
-  return ws;
-}
-
 std::atomic<std::uint64_t> next_scene_version{1};
-
-/// Throws std::runtime_error(message) when `error` is not empty.
-void check(const std::string& error) {
-  if (!error.empty()) throw std::runtime_error(error);
-}
-
-void append(std::string& message, const std::string& more) {
-  if (more.empty()) return;
-  if (!message.empty()) message += "; ";
-  message += more;
-}
 
 Eigen::Vector3d read_gravity(const ros::NodeHandle& private_nh) {
   if (!private_nh.hasParam("gravity")) return Eigen::Vector3d(0.0, 0.0, -9.81);
@@ -65,59 +30,6 @@ Eigen::Vector3d read_gravity(const ros::NodeHandle& private_nh) {
     if (!std::isfinite(g[k])) throw std::runtime_error(culprit);
   }
   return g;
-}
-
-/// The joint order and positions of a request, decoded into ws.indices and ws.q.
-void decode_positions(const ServedScene& scene, Workspace& ws, const std::vector<std::string>& names,
-                      const std::vector<double>& positions) {
-  check(scene.decoder->resolve(names, ws.indices));
-  scene.robot->cache->snapshot(ws.state);
-  check(scene.decoder->decode("position", names, ws.indices, positions, JointRequestDecoder::Default::LatestPosition,
-                              ws.state, ws.q));
-}
-
-/// External wrenches → forces on bodies (body coordinates): f_B = ^FX_Bᵀ f_F for a wrench given
-/// in frame F about its origin (X* of eq. 12, inverted). Returns whether any wrench was given.
-bool decode_wrenches(const Model<double>& model, const std::vector<geometry_msgs::WrenchStamped>& wrenches,
-                     std::vector<ForceVector<double>>& f_ext) {
-  std::fill(f_ext.begin(), f_ext.end(), ForceVector<double>::Zero());
-  for (std::size_t k = 0; k < wrenches.size(); ++k) {
-    const std::string field = "external_wrenches[" + std::to_string(k) + "]";
-    const std::string& frame_name = wrenches[k].header.frame_id;
-    if (!model.hasFrame(frame_name))
-      throw std::runtime_error(field + ": unknown frame '" + frame_name + "' (not a link of the robot model)");
-    const geometry_msgs::Wrench& w = wrenches[k].wrench;
-    const ForceVector<double> f(Eigen::Vector3d(w.torque.x, w.torque.y, w.torque.z),
-                                Eigen::Vector3d(w.force.x, w.force.y, w.force.z));
-    if (!f.toVector().allFinite()) throw std::runtime_error(field + " (frame '" + frame_name + "') is not finite");
-    const Frame<double>& frame = model.frames[model.frameIndex(frame_name)];
-    f_ext[frame.body] += frame.X_frame_body.applyInverse(f);
-  }
-  return !wrenches.empty();
-}
-
-/// ws.q, ws.qd, the third joint array (`field`: acceleration or effort, zero when left out) in
-/// ws.x, and the external wrenches in ws.f_ext. Returns whether any wrench was given.
-template <class Request>
-bool decode_dynamics_request(const ServedScene& scene, Workspace& ws, const Request& req, const std::string& field,
-                             const std::vector<double>& values) {
-  decode_positions(scene, ws, req.name, req.position);
-  check(scene.decoder->decode("velocity", req.name, ws.indices, req.velocity,
-                              JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
-  check(scene.decoder->decode(field, req.name, ws.indices, values, JointRequestDecoder::Default::Zero, ws.state, ws.x));
-  return decode_wrenches(*scene.model, req.external_wrenches, ws.f_ext);
-}
-
-/// Warnings for a successful answer: positions outside limits, velocities taken as zero.
-std::string request_notes(const ServedScene& scene, const Workspace& ws, const std::vector<double>& velocity) {
-  std::string notes = scene.decoder->limitWarnings(ws.q);
-  if (!velocity.empty()) return notes;
-  std::string missing;
-  for (std::size_t i = 0; i < scene.decoder->jointNames().size(); ++i)
-    if (!ws.state.velocity_known[scene.decoder->stateIndex(static_cast<int>(i))])
-      missing += (missing.empty() ? "'" : ", '") + scene.decoder->jointNames()[i] + "'";
-  if (!missing.empty()) append(notes, "note: no velocity received on joint_states for joint(s) " + missing + "; zero used");
-  return notes;
 }
 
 /// A list-of-strings parameter; throws naming it when it has another type.
@@ -153,25 +65,29 @@ void read_scene(const ros::NodeHandle& nh, SceneConfig& config) {
   }
 }
 
-template <class Vector>
-void copy_to(const Vector& v, std::vector<double>& out) {
-  out.assign(v.data(), v.data() + v.size());
-}
-
 }  // namespace
 
 DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
     : nh_(nh), private_nh_(private_nh), tf_listener_(tf_buffer_), diagnostics_(nh, private_nh) {
   private_nh_.param("publish_computed_torques", publish_computed_torques_, true);
   private_nh_.param("relock_tolerance", relock_tolerance_, 1e-6);
+  private_nh_.param("max_state_age", max_state_age_, 1.0);
   std::string mimic_joints = "independent";
   private_nh_.param<std::string>("mimic_joints", mimic_joints, mimic_joints);
   coupled_mimic_joints_ = mimic_joints == "coupled";
+  std::string unknown_joints = "drop";
+  private_nh_.param<std::string>("unknown_joints", unknown_joints, unknown_joints);
+  if (unknown_joints == "ignore") unknown_joints_ = JointStateCache::UnknownJoints::kIgnore;
   readSceneConfigs();
   try {
     if (mimic_joints != "independent" && mimic_joints != "coupled")
       throw std::runtime_error("parameter " + private_nh_.resolveName("mimic_joints") +
                                " must be 'independent' or 'coupled', not '" + mimic_joints + "'");
+    if (unknown_joints != "drop" && unknown_joints != "ignore")
+      throw std::runtime_error("parameter " + private_nh_.resolveName("unknown_joints") +
+                               " must be 'drop' or 'ignore', not '" + unknown_joints + "'");
+    if (!(max_state_age_ > 0.0))
+      throw std::runtime_error("parameter " + private_nh_.resolveName("max_state_age") + " must be > 0 (seconds)");
     if (!(relock_tolerance_ >= 0.0))
       throw std::runtime_error("parameter " + private_nh_.resolveName("relock_tolerance") + " must be >= 0");
     install(loadRobot({}));
@@ -189,8 +105,12 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   }
   endpoints_ = std::vector<SceneEndpoints>(scene_configs_.size());
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) advertiseScene(k);
-  joint_states_sub_ = nh_.subscribe("joint_states", 100, &DynamicsNode::onJointStates, this,
-                                    ros::TransportHints().tcpNoDelay());
+  ros::NodeHandle state_nh(nh_);
+  state_nh.setCallbackQueue(&joint_state_queue_);
+  joint_states_sub_ = state_nh.subscribe("joint_states", 1000, &DynamicsNode::onJointStates, this,
+                                         ros::TransportHints().tcpNoDelay());
+  joint_state_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &joint_state_queue_);
+  joint_state_spinner_->start();
   services_.push_back(private_nh_.advertiseService("transform_wrench", &DynamicsNode::onTransformWrench, this));
   services_.push_back(private_nh_.advertiseService("reload", &DynamicsNode::onReload, this));
   services_.push_back(private_nh_.advertiseService("set_payload", &DynamicsNode::onSetPayload, this));
@@ -236,7 +156,7 @@ void DynamicsNode::advertiseScene(std::size_t k) {
       prefix + "forward_dynamics", [this, k](auto& req, auto& res) { return onForwardDynamics(k, req, res); }));
   e.services.push_back(private_nh_.advertiseService<MassMatrix::Request, MassMatrix::Response>(
       prefix + "mass_matrix", [this, k](auto& req, auto& res) { return onMassMatrix(k, req, res); }));
-  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 10);
+  e.computed_torques = private_nh_.advertise<sensor_msgs::JointState>(prefix + "computed_torques", 1000);
 }
 
 std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::string, Payload>& payloads) const {
@@ -249,7 +169,7 @@ std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::s
   robot->bare = std::make_shared<const Model<double>>(build_model_from_urdf_string(urdf, options));
   robot->full = std::make_shared<const Model<double>>(with_payloads(*robot->bare, payloads));
   std::vector<std::string> joints(robot->bare->joint_names.begin() + 1, robot->bare->joint_names.end());
-  robot->cache = std::make_shared<JointStateCache>(joints);
+  robot->cache = std::make_shared<JointStateCache>(joints, max_state_age_, unknown_joints_);
   robot->robot_name = robot->bare->name;
   robot->root_frame = robot->bare->body_names[0];
   return robot;
@@ -347,99 +267,40 @@ bool DynamicsNode::serve(std::size_t index, Counters& counters, Response& res, C
   return true;  // the client always receives the body
 }
 
+
+
+
+
+
+
 bool DynamicsNode::onInverseDynamics(std::size_t k, InverseDynamics::Request& req, InverseDynamics::Response& res) {
-  return serve(k, endpoints_[k].inverse_dynamics, res, [&](const ServedScene& scene, Workspace& ws) {
-    const bool with_wrenches = decode_dynamics_request(scene, ws, req, "acceleration", req.acceleration);
-    const Model<double>& model = *scene.model;
-    const Eigen::VectorXd& tau = with_wrenches ? rnea(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
-                                               : rnea(model, *ws.data, ws.q, ws.qd, ws.x);
-    res.name = scene.decoder->jointNames();
-    copy_to(tau, res.effort);
-    res.message = request_notes(scene, ws, req.velocity);
-  });
+  return serve(k, endpoints_[k].inverse_dynamics, res,
+               [&](const ServedScene& scene, Workspace& ws) { compute_inverse_dynamics(scene, ws, req, res); });
 }
 
 bool DynamicsNode::onForwardDynamics(std::size_t k, ForwardDynamics::Request& req, ForwardDynamics::Response& res) {
-  return serve(k, endpoints_[k].forward_dynamics, res, [&](const ServedScene& scene, Workspace& ws) {
-    const bool with_wrenches = decode_dynamics_request(scene, ws, req, "effort", req.effort);
-    const Model<double>& model = *scene.model;
-    const Eigen::VectorXd& qdd = with_wrenches ? forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
-                                               : forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x);
-    res.name = scene.decoder->jointNames();
-    copy_to(qdd, res.acceleration);
-    res.message = request_notes(scene, ws, req.velocity);
-  });
+  return serve(k, endpoints_[k].forward_dynamics, res,
+               [&](const ServedScene& scene, Workspace& ws) { compute_forward_dynamics(scene, ws, req, res); });
 }
 
 bool DynamicsNode::onMassMatrix(std::size_t k, MassMatrix::Request& req, MassMatrix::Response& res) {
-  return serve(k, endpoints_[k].mass_matrix, res, [&](const ServedScene& scene, Workspace& ws) {
-    decode_positions(scene, ws, req.name, req.position);
-    const Eigen::MatrixXd& M = crba(*scene.model, *ws.data, ws.q);
-    res.name = scene.decoder->jointNames();
-    res.mass_matrix.resize(M.size());
-    Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(res.mass_matrix.data(), M.rows(),
-                                                                                      M.cols()) = M;
-    res.message = scene.decoder->limitWarnings(ws.q);
-  });
+  return serve(k, endpoints_[k].mass_matrix, res,
+               [&](const ServedScene& scene, Workspace& ws) { compute_mass_matrix(scene, ws, req, res); });
 }
 
 bool DynamicsNode::onTransformWrench(TransformWrench::Request& req, TransformWrench::Response& res) {
   return serve(0, transform_wrench_, res, [&](const ServedScene& scene, Workspace& ws) {
-    const std::string& source = req.wrench.header.frame_id;
-    if (source.empty()) throw std::runtime_error("wrench.header.frame_id is empty");
-    if (req.target_frame.empty()) throw std::runtime_error("target_frame is empty");
-    const geometry_msgs::Wrench& w = req.wrench.wrench;
-    const ForceVector<double> f(Eigen::Vector3d(w.torque.x, w.torque.y, w.torque.z),
-                                Eigen::Vector3d(w.force.x, w.force.y, w.force.z));
-    if (!f.toVector().allFinite()) throw std::runtime_error("wrench (frame '" + source + "') is not finite");
-    const bool uses_model = scene.model->hasFrame(source) || scene.model->hasFrame(req.target_frame);
-    if (uses_model) decode_positions(scene, ws, req.name, req.position);
-    const PluckerTransform<double> X =
-        frameTransform(scene, req.target_frame, source, req.wrench.header.stamp, uses_model ? &ws.q : nullptr);
-    const ForceVector<double> f_target = X.apply(f);  // X* f (eq. 12): the moment gains r × f
-    res.wrench.header.stamp = req.wrench.header.stamp;
-    res.wrench.header.frame_id = req.target_frame;
-    res.wrench.wrench.torque.x = f_target.angular.x();
-    res.wrench.wrench.torque.y = f_target.angular.y();
-    res.wrench.wrench.torque.z = f_target.angular.z();
-    res.wrench.wrench.force.x = f_target.linear.x();
-    res.wrench.wrench.force.y = f_target.linear.y();
-    res.wrench.wrench.force.z = f_target.linear.z();
-    if (uses_model) res.message = scene.decoder->limitWarnings(ws.q);
+    compute_transform_wrench(scene, ws, tf_frames_, req, res);
   });
 }
 
-PluckerTransform<double> DynamicsNode::frameTransform(const ServedScene& scene, const std::string& target,
-                                                      const std::string& source, const ros::Time& stamp,
-                                                      const Eigen::VectorXd* q) const {
-  const Model<double>& model = *scene.model;
-  const bool source_in_model = model.hasFrame(source), target_in_model = model.hasFrame(target);
-  if (!source_in_model && !target_in_model) return tfTransform(target, source, stamp);
-  Data<double>& data = *workspace_for(0, scene).data;
-  forward_kinematics(model, data, *q);
-  // ^FX_0 of a model frame; the base coordinates are those of the root link's frame.
-  auto from_base = [&](const std::string& name) { return data.X_frame_base[model.frameIndex(name)]; };
-  if (source_in_model && target_in_model) return from_base(target) * from_base(source).inverse();
-  // One robot frame and one tf frame: chain through the robot's root link, which tf must know.
-  const std::string& tf_frame = source_in_model ? target : source;
-  const std::string& root = scene.robot->root_frame;
-  if (!tf_buffer_._frameExists(tf_frame))
-    throw std::runtime_error("frame '" + tf_frame + "' is known neither to the robot model nor to tf2");
-  if (!tf_buffer_._frameExists(root))
-    throw std::runtime_error("frame '" + tf_frame + "' is on tf2 but the robot's root link '" + root +
-                             "' is not, so the two cannot be chained");
-  if (source_in_model) return tfTransform(target, root, stamp) * from_base(source).inverse();
-  return from_base(target) * tfTransform(root, source, stamp);
-}
+bool DynamicsNode::TfFrames::hasFrame(const std::string& frame) const { return buffer_._frameExists(frame); }
 
-PluckerTransform<double> DynamicsNode::tfTransform(const std::string& target, const std::string& source,
-                                                   const ros::Time& stamp) const {
-  for (const std::string* frame : {&source, &target})
-    if (!tf_buffer_._frameExists(*frame))
-      throw std::runtime_error("frame '" + *frame + "' is known neither to the robot model nor to tf2");
+PluckerTransform<double> DynamicsNode::TfFrames::transform(const std::string& target, const std::string& source,
+                                                           const ros::Time& stamp) const {
   geometry_msgs::TransformStamped t;
   try {
-    t = tf_buffer_.lookupTransform(target, source, stamp, ros::Duration(0.1));
+    t = buffer_.lookupTransform(target, source, stamp, ros::Duration(0.1));
   } catch (const tf2::TransformException& e) {
     throw std::runtime_error("tf2 cannot transform from '" + source + "' to '" + target + "': " + e.what());
   }
@@ -488,7 +349,7 @@ bool DynamicsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
   res.message = "loaded '" + loaded->robot_name + "' with " + std::to_string(loaded->bare->nv) + " joints";
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
     const auto s = scene(k);
-    if (s && !s->error.empty()) append(res.message, "but " + s->error);
+    if (s && !s->error.empty()) append_message(res.message, "but " + s->error);
   }
   ROS_INFO("dynamics: %s", res.message.c_str());
   return true;
@@ -555,7 +416,8 @@ void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(warned_mutex_);
     for (const std::string& name : unknown)
       if (warned_unknown_joints_.insert(name).second)
-        ROS_WARN("dynamics: joint_states names joint '%s', which the robot model does not have; it is ignored",
+        ROS_WARN("dynamics: joint_states names joint '%s', which the robot model does not have; it is "
+                 "ignored (~unknown_joints: ignore)",
                  name.c_str());
   }
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
@@ -579,20 +441,11 @@ void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
       }
     }
     if (!publish_computed_torques_ || !served->model || endpoints_.size() <= k) continue;
-    Workspace& ws = workspace_for(k, *served);
-    robot->cache->snapshot(ws.state);
-    if (!ws.state.complete) continue;
-    const JointRequestDecoder& decoder = *served->decoder;
     try {
-      check(decoder.decode("position", {}, {}, {}, JointRequestDecoder::Default::LatestPosition, ws.state, ws.q));
-      check(decoder.decode("velocity", {}, {}, {}, JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
-      const Eigen::VectorXd& tau = nonlinear_effects(*served->model, *ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
       sensor_msgs::JointState out;
+      if (!compute_latest_torques(*served, workspace_for(k, *served), out.position, out.velocity, out.effort)) continue;
       out.header = msg->header;
-      out.name = decoder.jointNames();
-      copy_to(ws.q, out.position);
-      copy_to(ws.qd, out.velocity);
-      copy_to(tau, out.effort);
+      out.name = served->decoder->jointNames();
       endpoints_[k].computed_torques.publish(out);
       ++torque_messages_;
     } catch (const std::exception& e) {
@@ -625,7 +478,7 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
       status.add(prefix + name + " failures", static_cast<long>(counters->failures));
     }
     const auto s = scene(k);
-    if (s && !s->error.empty()) append(scene_errors, s->error);
+    if (s && !s->error.empty()) append_message(scene_errors, s->error);
   }
   std::shared_ptr<const ServedRobot> robot;
   {

@@ -66,13 +66,20 @@ std::string JointRequestDecoder::decode(const std::string& field, const std::vec
     switch (fallback) {
       case Default::Zero: out[i] = 0.0; break;
       case Default::LatestVelocity:
-        out[i] = state.velocity_known.empty() ? 0.0 : state.velocity[state_index_[i]];
-        break;
-      case Default::LatestPosition:
-        if (state.position_known.empty() || !state.position_known[state_index_[i]])
+      case Default::LatestPosition: {
+        const int s = state_index_[i];
+        if (state.position_known.empty() || !state.position_known[s])
           return "no joint state yet for joint '" + names_[i] + "' (" + field + " not given in the request)";
-        out[i] = state.position[state_index_[i]];
+        const double age = state.now - state.received[s];
+        if (age > state.max_age) {
+          std::ostringstream why;
+          why << "the joint state of joint '" << names_[i] << "' is " << age << " s old, older than max_state_age ("
+              << state.max_age << " s); give the " << field << " in the request or publish joint_states";
+          return why.str();
+        }
+        out[i] = fallback == Default::LatestPosition ? state.position[s] : state.velocity[s];
         break;
+      }
     }
   }
   for (std::size_t k = 0; k < values.size(); ++k) out[indices[k]] = values[k];

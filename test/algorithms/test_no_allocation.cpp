@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <new>
 
+#include "spatial_dynamics/algorithms/aba_refined.hpp"
 #include "test_utils.hpp"
 
 namespace {
@@ -46,6 +47,7 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     options.floating_base = GetParam();
     const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file), options);
     sd::Data<double> data(model);
+    sd::RefinementWorkspace<double> refinement(model);
     std::mt19937 rng(3);
     const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
     const Eigen::VectorXd qd = sd_test::random_vector(model.nv, rng);
@@ -70,6 +72,7 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::frame_jacobian(model, data, q, frame, sd::ReferenceFrame::RootAligned);
     sd::kinetic_energy(model, data, q, qd);
     sd::total_momentum(model, data, q, qd);
+    sd::aba_refined(model, data, refinement, q, qd, qdd);
     EXPECT_EQ(g_allocations - before, 0) << file << (GetParam() ? " (floating base)" : " (fixed base)");
   }
 }

@@ -80,7 +80,9 @@ class NodeServices : public ::testing::Test {
     }
     joint_states.publish(msg);
     sensor_msgs::JointState torques;
-    if (expect_torques) EXPECT_TRUE(listener.waitFor(msg.header.stamp, torques)) << "no computed torques for stamp";
+    if (expect_torques) {
+      EXPECT_TRUE(listener.waitFor(msg.header.stamp, torques)) << "no computed torques for stamp";
+    }
     return torques;
   }
 

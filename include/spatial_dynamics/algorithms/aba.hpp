@@ -57,7 +57,12 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
     if (j.nv == 1) {
       const Vector6<S> U = inertia_times_subspace(j, IA);                       // U = Iᴬ S
       const S D = joint_project(j, U);                                           // D = Sᵀ U
-      if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * IA.cwiseAbs().maxCoeff())) throw_singular_joint(model, i);
+      // D is numerically zero when it is below the rounding noise of the block it is taken from:
+      // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
+      // so that the test does not depend on the units (a millimetre robot is not singular).
+      const S scale = j.type == JointType::Revolute ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
+                                                    : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
+      if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
       const S u = tau[j.idx_v] - joint_project(j, pA);                           // u = τ − Sᵀ pᴬ
       data.U[i].col(0) = U;
       data.D_inv[i](0, 0) = S(1) / D;
@@ -86,7 +91,7 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
     if (j.nv == 1) {
       const S qdd = data.D_inv[i](0, 0) * (data.u[i][0] - data.U[i].col(0).dot(ap));  // q̈ = D⁻¹(u − Uᵀ a')
       data.qdd[j.idx_v] = qdd;
-      data.a[i] = a_prime + joint_motion(j, &qdd);                                    // a_i = a' + S q̈
+      data.a[i] = a_prime + one_dof_motion(j, qdd);                                    // a_i = a' + S q̈
     } else {
       const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);
       data.qdd.template segment<6>(j.idx_v) = qdd;

@@ -88,14 +88,18 @@ inline void joint_up_transform(const Model<S>& model, int i, const S* q, Plucker
   }
 }
 
+/// S q̇ for a 1-DoF joint with velocity (or acceleration) v.
+template <class S>
+inline MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
+  if (j.type == JointType::Revolute) return {detail::scaled_axis(j, v), Vector3<S>::Zero()};
+  return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
+}
+
 /// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.
 template <class S>
 inline MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {
-  switch (j.type) {
-    case JointType::Revolute: return {detail::scaled_axis(j, qd[0]), Vector3<S>::Zero()};
-    case JointType::Prismatic: return {Vector3<S>::Zero(), detail::scaled_axis(j, qd[0])};
-    default: return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
-  }
+  if (j.type == JointType::Free) return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
+  return one_dof_motion(j, qd[0]);
 }
 
 /// Column k of the motion subspace S.
@@ -106,8 +110,7 @@ inline MotionVector<S> joint_subspace_column(const Joint<S>& j, int k) {
     e[k] = S(1);
     return MotionVector<S>(e);
   }
-  const Vector3<S> axis = detail::scaled_axis(j, S(1));
-  return j.type == JointType::Revolute ? MotionVector<S>(axis, Vector3<S>::Zero()) : MotionVector<S>(Vector3<S>::Zero(), axis);
+  return one_dof_motion(j, S(1));
 }
 
 /// Sᵀ f written to out[0 .. nv).
@@ -161,10 +164,7 @@ inline void body_up_transform(const Model<S>& model, int i, const S* q, PluckerT
 /// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
 template <class S>
 inline MotionVector<S> body_joint_motion(const Joint<S>& j, const S* qd) {
-  if (j.coupled) {
-    const S v = j.mimic.multiplier * qd[j.idx_v];  // q̇ = k q̇_master
-    return joint_motion(j, &v);
-  }
+  if (j.coupled) return one_dof_motion(j, S(j.mimic.multiplier * qd[j.idx_v]));  // q̇ = k q̇_master
   return joint_motion(j, qd + j.idx_v);
 }
 

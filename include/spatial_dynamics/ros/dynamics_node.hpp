@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Trigger.h>
@@ -26,8 +27,8 @@
 #include "spatial_dynamics/TransformWrench.h"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/reduction/payload.hpp"
-#include "spatial_dynamics/ros/joint_request_decoder.hpp"
-#include "spatial_dynamics/ros/joint_state_cache.hpp"
+#include "spatial_dynamics/ros/served_model.hpp"
+#include "spatial_dynamics/ros/service_handlers.hpp"
 
 namespace spatial_dynamics {
 
@@ -40,25 +41,6 @@ struct SceneConfig {
   std::string root_link;            // root link and tip links
   std::vector<std::string> tip_links;
   std::string error;                // a configuration error, reported by the scene's services
-};
-
-/// The robot as loaded: immutable, replaced on ~reload and on ~set_payload.
-struct ServedRobot {
-  std::shared_ptr<const Model<double>> bare;  // from robot_description, independent joints
-  std::shared_ptr<const Model<double>> full;  // with the payloads attached
-  std::shared_ptr<JointStateCache> cache;     // every joint of the robot; survives payload changes
-  std::string robot_name;
-  std::string root_frame;                     // the URDF root link: the frame tf chains through
-};
-
-/// One scene's model: immutable, replaced when a locked joint moves or the robot changes.
-struct ServedScene {
-  std::uint64_t version = 0;                  // unique per build; keys the per-thread workspaces
-  std::shared_ptr<const ServedRobot> robot;
-  std::shared_ptr<const Model<double>> model;
-  std::unique_ptr<JointRequestDecoder> decoder;
-  std::vector<std::pair<int, double>> locks;  // (joint-state index, locked position)
-  std::string error;                          // why the scene has no model ("" when it has one)
 };
 
 class DynamicsNode {
@@ -100,19 +82,14 @@ class DynamicsNode {
   template <class Response, class Compute>
   bool serve(std::size_t scene, Counters& counters, Response& res, Compute&& compute);
 
-  /// ^{target}X_{source} for two frames, each a model frame (kinematics at q) or a tf2 frame.
-  PluckerTransform<double> frameTransform(const ServedScene& served, const std::string& target,
-                                          const std::string& source, const ros::Time& stamp,
-                                          const Eigen::VectorXd* q) const;
-  PluckerTransform<double> tfTransform(const std::string& target, const std::string& source,
-                                       const ros::Time& stamp) const;
-
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   ros::NodeHandle nh_, private_nh_;
   bool publish_computed_torques_ = true;
   bool coupled_mimic_joints_ = false;
   double relock_tolerance_ = 1e-6;
+  double max_state_age_ = 1.0;
+  JointStateCache::UnknownJoints unknown_joints_ = JointStateCache::UnknownJoints::kDrop;
 
   std::vector<SceneConfig> scene_configs_;    // [0]: the main services
   std::vector<SceneEndpoints> endpoints_;     // one per scene config
@@ -124,10 +101,28 @@ class DynamicsNode {
   std::mutex payload_mutex_;                  // serialises ~set_payload and ~reload
   std::map<std::string, Payload> payloads_;
 
+  /// Frames outside the robot model, from tf2: used for poses only (tf2's own wrench transform
+  /// in ROS 1 drops the r × f moment).
+  class TfFrames : public FrameLookup {
+   public:
+    explicit TfFrames(const tf2_ros::Buffer& buffer) : buffer_(buffer) {}
+    bool hasFrame(const std::string& frame) const override;
+    PluckerTransform<double> transform(const std::string& target, const std::string& source,
+                                       const ros::Time& stamp) const override;
+
+   private:
+    const tf2_ros::Buffer& buffer_;
+  };
+
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
+  TfFrames tf_frames_{tf_buffer_};
 
+  // joint_states are served by a thread of their own, so that a burst of service calls never
+  // delays (or, through a full queue, drops) a joint state and its computed torques.
+  ros::CallbackQueue joint_state_queue_;
   ros::Subscriber joint_states_sub_;
+  std::unique_ptr<ros::AsyncSpinner> joint_state_spinner_;
   std::vector<ros::ServiceServer> services_;
   Counters transform_wrench_;
   std::atomic<long> joint_state_messages_{0}, joint_state_drops_{0}, torque_messages_{0};

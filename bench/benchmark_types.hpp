@@ -1,0 +1,66 @@
+// What the benchmark measures: the algorithms, the random states they run on, and the interface
+// every library's adapter implements. All results are handed back in spatial_dynamics'
+// conventions (joint order by name, velocity coordinates of the free joint as (ω; v) in the root
+// link's frame) so that one reference serves every library.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace bench {
+
+enum class Algorithm { Rnea, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk };
+
+inline const std::vector<Algorithm>& all_algorithms() {
+  static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::Aba,     Algorithm::AbaRefined,
+                                             Algorithm::Crba,         Algorithm::CrbaCholesky,
+                                             Algorithm::Gravity,      Algorithm::Fk};
+  return all;
+}
+
+/// The CSV names (lower case, as the issue fixes them).
+inline const char* name(Algorithm a) {
+  switch (a) {
+    case Algorithm::Rnea: return "rnea";
+    case Algorithm::Aba: return "aba";
+    case Algorithm::AbaRefined: return "aba_refined";
+    case Algorithm::Crba: return "crba";
+    case Algorithm::CrbaCholesky: return "crba_cholesky";
+    case Algorithm::Gravity: return "gravity";
+    case Algorithm::Fk: return "fk";
+  }
+  return "?";
+}
+
+/// Forward dynamics algorithms take τ and return q̈; the others are checked against their own
+/// reference (τ, M, g or body poses).
+inline bool is_forward_dynamics(Algorithm a) {
+  return a == Algorithm::Aba || a == Algorithm::AbaRefined || a == Algorithm::CrbaCholesky;
+}
+
+/// One random state in spatial_dynamics' coordinates: q ∈ U(−π, π) (a unit quaternion for a free
+/// joint, position in U(−1, 1)), q̇, q̈ ∈ U(−1, 1), and τ = RNEA(q, q̇, q̈) in double, which every
+/// forward dynamics is fed.
+struct State {
+  Eigen::VectorXd q, qd, qdd, tau;
+};
+
+/// A library's view of one model. Constructed per model; `prepare` converts the state pool into
+/// the library's own coordinates outside the timed region; `run` is the timed call; `result`
+/// returns the last result in spatial_dynamics' conventions (τ or q̈ as nv-vectors, M as an nv×nv
+/// matrix flattened column-major, FK as 12 numbers per moving body: R row-major, then p).
+class Adapter {
+ public:
+  virtual ~Adapter() = default;
+  virtual std::string library() const = 0;
+  virtual std::string scalar() const { return "double"; }
+  virtual bool supports(Algorithm a) const = 0;
+  virtual std::string method(Algorithm a) const = 0;  // what the library calls, for the table
+  virtual void prepare(const std::vector<State>& states) = 0;
+  virtual void run(Algorithm a, int state) = 0;
+  virtual Eigen::VectorXd result(Algorithm a) = 0;
+};
+
+}  // namespace bench

@@ -1,0 +1,482 @@
+// Speed against error: every algorithm of spatial_dynamics (float and double) and of the
+// comparators found at build time (KDL, DART, MuJoCo) on the same models and the same random
+// states, timed per call and checked against the float128 reference. Writes results.csv,
+// results.md, and through plot.py and summary.py benchmark.png and summary.md, into --out DIR.
+//
+//   benchmark [--model PATH]... [--floating] [--quick] [--out DIR]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "benchmark_types.hpp"
+#include "reference.hpp"
+#include "spatial_dynamics_adapter.hpp"
+#include "spatial_dynamics/synthetic/random_robot.hpp"
+#include "spatial_dynamics/reduction/reduce_model.hpp"
+#include "spatial_dynamics/urdf/model_builder.hpp"
+#include "urdf_text.hpp"
+#ifdef SD_BENCH_WITH_KDL
+#include "kdl_adapter.hpp"
+#endif
+#ifdef SD_BENCH_WITH_DART
+#include "dart_adapter.hpp"
+#endif
+#ifdef SD_BENCH_WITH_MUJOCO
+#include "mujoco_adapter.hpp"
+#endif
+
+namespace sd = spatial_dynamics;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace bench {
+namespace {
+
+struct Settings {
+  std::vector<std::string> models;  // --model PATH (repeatable); empty: the default set
+  bool floating = false;            // --floating: also run --model files with a free root
+  bool quick = false;
+  std::string out = "benchmark_results";
+  // Derived from quick.
+  int states = 1000;                // random states for the errors (and the timing pool)
+  int repeats = 5;
+  int calls = 10000;                // calls per repeat …
+  double repeat_seconds = 1.0;      // … or as many as fit in this time when a call is slower
+  double mass_matrix_seconds = 60;  // budget of the float128 mass matrices per model
+  double error_seconds = 30;        // budget of one row's calls while measuring errors
+  int min_mass_matrices = 3;
+  long min_calls = 10;
+};
+
+struct ModelSpec {
+  std::string name, base, path;  // base: "fixed" or "floating"
+  /// Non-empty: the reduced scene of the file's robot that keeps these joints (the others locked
+  /// at 0); only spatial_dynamics has scenes, so the comparators sit out.
+  std::vector<std::string> kept_joints = {};
+};
+
+struct Row {
+  std::string library, algorithm, method, model, base, scalar;
+  int dof = 0;
+  double ns_median = 0, ns_min = 0, ns_max = 0, max_err = 0, median_err = 0, allocs = 0;
+  double max_err_first_100 = 0;  // over the first 100 states, as the issue's anchor table was measured
+  long calls = 0;
+  int repeats = 0, error_states = 0;
+  std::string failure;  // non-empty: the call failed (message), no figures
+};
+
+std::string format_g(double x, int digits = 2) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.*e", digits - 1, x);
+  return b;
+}
+
+/// The default set: the shared robots (fixed; talos and solo12 also floating) and the synthetic
+/// models, whose URDF is written into out/models.
+std::vector<ModelSpec> default_models(const Settings& settings) {
+  std::vector<ModelSpec> specs;
+  const std::string robots = SD_ROBOTS_DIR;
+  for (const char* r : {"double_pendulum", "panda", "ur5", "solo12", "talos"})
+    specs.push_back({r, "fixed", robots + "/" + r + ".urdf"});
+  for (const char* r : {"solo12", "talos"}) specs.push_back({r, "floating", robots + "/" + r + ".urdf"});
+  std::vector<std::string> left_arm;
+  for (int k = 1; k <= 7; ++k) left_arm.push_back("arm_left_" + std::to_string(k) + "_joint");
+  specs.push_back({"talos_left_arm", "fixed", robots + "/talos.urdf", left_arm});  // against "talos" above
+  const std::string dir = settings.out + "/models";
+  fs::create_directories(dir);
+  auto add = [&](const std::string& name, const std::vector<sd::synthetic::Link>& links) {
+    const std::string path = dir + "/" + name + ".urdf";
+    write_file(path, sd::synthetic::to_urdf(name, links));
+    specs.push_back({name, "fixed", path});
+  };
+  for (int n : {10, 50, 200, 1000}) {
+    std::mt19937 rng(n);
+    add("chain_" + std::to_string(n), sd::synthetic::random_chain(n, rng));
+  }
+  {
+    std::mt19937 rng(51);
+    add("tree_50", sd::synthetic::random_tree(50, rng));
+  }
+  {
+    std::mt19937 rng(201);
+    sd::synthetic::RandomOptions options;
+    options.mass_min = 1e-4;
+    options.mass_max = 1e2;
+    options.log_uniform_mass = true;  // box inertias scale with the mass
+    add("mass_span_200", sd::synthetic::random_chain(200, rng, options));
+  }
+  return specs;
+}
+
+std::vector<State> random_states(const sd::Model<double>& model, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  sd::Data<double> data(model);
+  std::vector<State> states;
+  for (int s = 0; s < count; ++s) {
+    State st;
+    st.q.resize(model.nq);
+    for (int i = 1; i < model.nbodies(); ++i) {
+      const auto& j = model.joints[i];
+      if (j.type == sd::JointType::Free) {
+        for (int k = 0; k < 3; ++k) st.q[j.idx_q + k] = u(rng);
+        Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
+        st.q.segment<4>(j.idx_q + 3) = quat.normalized();
+      } else {
+        st.q[j.idx_q] = M_PI * u(rng);
+      }
+    }
+    st.qd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
+    st.qdd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
+    st.tau = sd::rnea(model, data, st.q, st.qd, st.qdd);
+    states.push_back(st);
+  }
+  return states;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// ns per call: warm-up, then `repeats` runs of `calls` calls (fewer when a call is slow) over the
+/// state pool; allocations counted over the timed calls.
+void time_calls(Adapter& adapter, Algorithm a, int pool, const Settings& settings, Row& row) {
+  const auto warm_start = Clock::now();
+  int warm = 0;
+  do adapter.run(a, warm++ % pool);
+  while (warm < 100 && std::chrono::duration<double>(Clock::now() - warm_start).count() < 20 * settings.repeat_seconds);
+  const double per_call = std::chrono::duration<double>(Clock::now() - warm_start).count() / warm;
+  const long calls = std::max(settings.min_calls, std::min<long>(settings.calls, static_cast<long>(settings.repeat_seconds / per_call)));
+  std::vector<double> ns;
+  long allocations = 0;
+  for (int r = 0; r < settings.repeats; ++r) {
+    const long before = allocation_count();
+    const auto start = Clock::now();
+    for (long c = 0; c < calls; ++c) adapter.run(a, static_cast<int>(c % pool));
+    const auto stop = Clock::now();
+    allocations += allocation_count() - before;
+    ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / calls);
+  }
+  row.ns_median = median(ns);
+  row.ns_min = *std::min_element(ns.begin(), ns.end());
+  row.ns_max = *std::max_element(ns.begin(), ns.end());
+  row.allocs = static_cast<double>(allocations) / (static_cast<double>(calls) * settings.repeats);
+  row.calls = calls;
+  row.repeats = settings.repeats;
+}
+
+struct Loaded {
+  std::unique_ptr<Adapter> adapter;
+  std::string library, why;
+};
+
+std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpec& spec, const Settings& settings) {
+  std::vector<Loaded> out;
+  out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
+  out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
+  if (!spec.kept_joints.empty()) return out;  // a reduced scene: spatial_dynamics only
+  // Comparators get the URDF without geometry (meshes they would try to open).
+  [[maybe_unused]] const std::string text = without_geometry(read_file(spec.path));
+  [[maybe_unused]] const std::string dir = settings.out + "/comparator_urdf";
+  fs::create_directories(dir);
+  [[maybe_unused]] std::string why;
+#ifdef SD_BENCH_WITH_KDL
+  why.clear();
+  auto kdl = make_kdl_adapter(model, text, why);
+  out.push_back({std::move(kdl), "kdl", why});
+#endif
+#ifdef SD_BENCH_WITH_DART
+  why.clear();
+  auto dart = make_dart_adapter(model, text, why);
+  out.push_back({std::move(dart), "dart", why});
+#endif
+#ifdef SD_BENCH_WITH_MUJOCO
+  why.clear();
+  const std::string mj_text = model.floating_base ? with_floating_root(text, model.body_names[1], model.joint_names[1]) : text;
+  const std::string mj_path = dir + "/" + spec.name + "_" + spec.base + ".urdf";
+  write_file(mj_path, mj_text);
+  auto mujoco = make_mujoco_adapter(model, mj_path, why);
+  out.push_back({std::move(mujoco), "mujoco", why});
+#endif
+  return out;
+}
+
+void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>& rows,
+               std::vector<std::string>& load_failures) {
+  sd::ModelBuildOptions options;
+  options.floating_base = spec.base == "floating";
+  const sd::Model<double> model =
+      spec.kept_joints.empty()
+          ? sd::build_model_from_urdf_file(spec.path, options)
+          : sd::reduce_model(sd::build_model_from_urdf_file(spec.path, options), sd::Scene{spec.kept_joints, {}});
+  const auto t0 = Clock::now();
+  const std::vector<State> states = random_states(model, settings.states, 12345);
+  std::vector<Loaded> adapters = load_adapters(model, spec, settings);
+  for (Loaded& l : adapters) {
+    if (!l.adapter) {
+      load_failures.push_back(l.library + " | " + spec.name + " (" + spec.base + ") | " + l.why);
+      continue;
+    }
+    l.adapter->prepare(states);
+  }
+
+  // Errors against the reference, state by state; the float128 mass matrix within a budget.
+  Reference reference(model);
+  struct Tally {
+    std::vector<double> errors;
+    std::string failure;
+    double seconds = 0;  // spent in this row's calls; past settings.error_seconds it takes no more states
+  };
+  std::map<std::pair<Adapter*, Algorithm>, Tally> tallies;
+  int mass_matrix_states = settings.states;
+  const auto ref_start = Clock::now();
+  for (int s = 0; s < settings.states; ++s) {
+    bool with_M = s < mass_matrix_states;
+    try {
+      reference.compute(states[s], with_M);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: reference failed: %s\n", spec.name.c_str(), e.what());
+      return;
+    }
+    if (s == 0) {  // budget the O(n²) float128 mass matrices from the first one's cost
+      const double seconds = std::chrono::duration<double>(Clock::now() - ref_start).count();
+      mass_matrix_states = std::max(settings.min_mass_matrices,
+                                    std::min(settings.states, static_cast<int>(settings.mass_matrix_seconds / seconds)));
+    }
+    for (Loaded& l : adapters) {
+      if (!l.adapter) continue;
+      for (Algorithm a : all_algorithms()) {
+        if (!l.adapter->supports(a) || !reference.has(a)) continue;
+        Tally& t = tallies[{l.adapter.get(), a}];
+        if (!t.failure.empty() || (t.seconds > settings.error_seconds && !t.errors.empty())) continue;
+        try {
+          const auto call_start = Clock::now();
+          l.adapter->run(a, s);
+          t.seconds += std::chrono::duration<double>(Clock::now() - call_start).count();
+          const Eigen::VectorXd x = l.adapter->result(a);
+          t.errors.push_back(x.allFinite() ? sd::relative_error_to(x, reference.of(a)) : INFINITY);
+        } catch (const std::exception& e) {
+          t.failure = e.what();
+        }
+      }
+    }
+  }
+  const double ref_seconds = std::chrono::duration<double>(Clock::now() - ref_start).count();
+
+  for (Loaded& l : adapters) {
+    if (!l.adapter) continue;
+    for (Algorithm a : all_algorithms()) {
+      if (!l.adapter->supports(a)) continue;
+      Row row;
+      row.library = l.adapter->library();
+      row.algorithm = name(a);
+      row.method = l.adapter->method(a);
+      row.model = spec.name;
+      row.base = spec.base;
+      row.scalar = l.adapter->scalar();
+      row.dof = model.nv;
+      const Tally& t = tallies[{l.adapter.get(), a}];
+      if (!t.failure.empty()) {
+        row.failure = t.failure;
+        rows.push_back(row);
+        continue;
+      }
+      row.error_states = static_cast<int>(t.errors.size());
+      row.max_err = *std::max_element(t.errors.begin(), t.errors.end());
+      row.max_err_first_100 = *std::max_element(t.errors.begin(), t.errors.begin() + std::min<std::size_t>(100, t.errors.size()));
+      row.median_err = median(t.errors);
+      time_calls(*l.adapter, a, settings.states, settings, row);
+      rows.push_back(row);
+    }
+  }
+  std::printf("%-16s %-8s nv %4d: reference %.1f s (%d mass matrices), total %.1f s\n", spec.name.c_str(), spec.base.c_str(),
+              model.nv, ref_seconds, mass_matrix_states, std::chrono::duration<double>(Clock::now() - t0).count());
+  std::fflush(stdout);
+}
+
+void write_csv(const std::string& path, const std::vector<Row>& rows) {
+  std::ostringstream s;
+  s << "library,algorithm,model,base,dof,scalar,ns_median,ns_min,ns_max,max_rel_err,median_rel_err,allocs_per_call\n";
+  char line[512];
+  for (const Row& r : rows) {
+    if (!r.failure.empty()) {
+      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%s,nan,nan,nan,nan,nan,nan\n", r.library.c_str(), r.algorithm.c_str(),
+                    r.model.c_str(), r.base.c_str(), r.dof, r.scalar.c_str());
+    } else {
+      std::snprintf(line, sizeof line, "%s,%s,%s,%s,%d,%s,%.1f,%.1f,%.1f,%.3e,%.3e,%g\n", r.library.c_str(), r.algorithm.c_str(),
+                    r.model.c_str(), r.base.c_str(), r.dof, r.scalar.c_str(), r.ns_median, r.ns_min, r.ns_max, r.max_err,
+                    r.median_err, r.allocs);
+    }
+    s << line;
+  }
+  write_file(path, s.str());
+}
+
+/// The best forward-dynamics figure of the issue's anchor table (max over 100 states), by model.
+const std::map<std::string, double>& anchor_fd() {
+  static const std::map<std::string, double> anchors = {{"panda", 3.9e-14},      {"ur5", 1.8e-14},
+                                                         {"talos", 9.2e-14},
+                                                         {"chain_200", 5.6e-10}, {"chain_1000", 6.8e-08},
+                                                         {"mass_span_200", 3.3e-07}};
+  return anchors;
+}
+
+const Row* find(const std::vector<Row>& rows, const std::string& lib, const std::string& alg, const std::string& model,
+                const std::string& base, const std::string& scalar = "double") {
+  for (const Row& r : rows)
+    if (r.library == lib && r.algorithm == alg && r.model == model && r.base == base && r.scalar == scalar && r.failure.empty())
+      return &r;
+  return nullptr;
+}
+
+std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
+  std::ostringstream s;
+  s << "| model | base | RNEA | CRBA | ≤ 4e-15 | ABA | ABA, first 100 states | best anchor FD (100 states) | "
+       "best comparator FD (this run) | ABA ok | refined FD | time refined / ABA | refined ok |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ModelSpec& m : specs) {
+    const Row* rnea = find(rows, "spatial_dynamics", "rnea", m.name, m.base);
+    const Row* crba = find(rows, "spatial_dynamics", "crba", m.name, m.base);
+    const Row* aba = find(rows, "spatial_dynamics", "aba", m.name, m.base);
+    const Row* ref = find(rows, "spatial_dynamics", "aba_refined", m.name, m.base);
+    if (!rnea || !crba || !aba || !ref) continue;
+    double best_peer = INFINITY;
+    for (const Row& r : rows)
+      if (r.library != "spatial_dynamics" && r.model == m.name && r.base == m.base && r.failure.empty() &&
+          (r.algorithm == "aba" || r.algorithm == "crba_cholesky"))
+        best_peer = std::min(best_peer, r.max_err);
+    std::error_code ec;
+    const bool robot = fs::equivalent(fs::path(m.path).parent_path(), SD_ROBOTS_DIR, ec);  // a shared robot
+    const auto anchor = anchor_fd().find(m.base == "fixed" ? m.name : "");
+    const double target = anchor != anchor_fd().end() ? anchor->second : best_peer;
+    const bool id_ok = rnea->max_err <= 4e-15 && crba->max_err <= 4e-15;
+    const double ratio = ref->ns_median / aba->ns_median;
+    const bool aba_ok = aba->max_err <= target;
+    // Robots: refined ≤ 1e-15 at ≤ 4× ABA's time; hard chains: ≥ 1000× better than the anchor.
+    const bool hard = anchor != anchor_fd().end() && !robot;
+    const bool refined_ok = hard ? ref->max_err * 1000 <= target : (ref->max_err <= 1e-15 && ratio <= 4.0);
+    s << "| " << m.name << " | " << m.base << " | " << format_g(rnea->max_err) << " | " << format_g(crba->max_err) << " | "
+      << (robot ? (id_ok ? "yes" : "**no**") : "—") << " | " << format_g(aba->max_err) << " | "
+      << format_g(aba->max_err_first_100) << " | "
+      << (anchor != anchor_fd().end() ? format_g(anchor->second) : "—") << " | "
+      << (std::isfinite(best_peer) ? format_g(best_peer) : "—") << " | " << (aba_ok ? "yes" : "**no**") << " | "
+      << format_g(ref->max_err) << " | " << format_g(ratio, 3) << " | "
+      << (robot || hard ? (refined_ok ? "yes" : "**no**") : "—") << " |\n";
+  }
+  return s.str();
+}
+
+void write_markdown(const std::string& path, const std::vector<Row>& rows, const std::vector<ModelSpec>& specs,
+                    const std::vector<std::string>& load_failures, const Settings& settings) {
+  std::ostringstream s;
+  s << "# Speed against error\n\n"
+    << "Errors: norm-wise relative error ‖x − x_ref‖/‖x_ref‖ (Frobenius for M; for FK the stacked rotation matrices and "
+       "positions of every moving body) against spatial_dynamics in float128 on the same model (converted exactly) and "
+       "inputs; max and median over the random states (q ∈ U(−π, π), q̇, q̈ ∈ U(−1, 1), forward dynamics fed τ = RNEA "
+       "in double). Float rows get the same double inputs rounded to float. Times: median (min–max) of "
+    << settings.repeats << " repeats of up to " << settings.calls << " calls over the state pool after a warm-up; fewer calls "
+    << "per repeat when one repeat would take more than " << settings.repeat_seconds << " s (the calls column). "
+    << "Errors over " << settings.states << " states, except that a row whose calls have taken " << settings.error_seconds
+    << " s stops taking states, and the float128 mass matrices get " << settings.mass_matrix_seconds
+    << " s per model (the states column). "
+    << "Everything built without -march=native (SSE2, no FMA), like Debian's comparator libraries.\n\n";
+  s << "## Acceptance (issue: speed-against-error benchmark)\n\n" << acceptance(rows, specs) << "\n";
+  s << "## Comparators that could not load a model\n\n| library | model | why |\n|---|---|---|\n";
+  for (const std::string& f : load_failures) s << "| " << f << " |\n";
+  s << "\n## All rows\n\n| model | base | dof | library | scalar | algorithm | method | ns/call median (min–max) | "
+       "max err | median err | allocs/call | calls × repeats | states |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    s << "| " << r.model << " | " << r.base << " | " << r.dof << " | " << r.library << " | " << r.scalar << " | " << r.algorithm
+      << " | " << r.method << " | ";
+    if (!r.failure.empty()) {
+      s << "fails: " << r.failure << " | | | | | |\n";
+      continue;
+    }
+    char t[96];
+    std::snprintf(t, sizeof t, "%.0f (%.0f–%.0f)", r.ns_median, r.ns_min, r.ns_max);
+    s << t << " | " << (std::isfinite(r.max_err) ? format_g(r.max_err) : "non-finite") << " | "
+      << (std::isfinite(r.median_err) ? format_g(r.median_err) : "non-finite") << " | " << r.allocs << " | " << r.calls
+      << " × " << r.repeats << " | " << r.error_states << " |\n";
+  }
+  write_file(path, s.str());
+}
+
+int usage(const char* argv0) {
+  std::fprintf(stderr, "usage: %s [--model PATH]... [--floating] [--quick] [--out DIR]\n", argv0);
+  return 2;
+}
+
+}  // namespace
+}  // namespace bench
+
+int main(int argc, char** argv) {
+  using namespace bench;
+  Settings settings;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--model" && i + 1 < argc) settings.models.push_back(argv[++i]);
+    else if (arg == "--out" && i + 1 < argc) settings.out = argv[++i];
+    else if (arg == "--quick") settings.quick = true;
+    else if (arg == "--floating") settings.floating = true;
+    else return usage(argv[0]);
+  }
+  if (settings.quick) {
+    settings.states = 10;
+    settings.repeats = 3;
+    settings.calls = 10000;
+    settings.repeat_seconds = 0.005;
+    settings.mass_matrix_seconds = 0.5;
+    settings.error_seconds = 0.3;
+    settings.min_mass_matrices = 1;
+    settings.min_calls = 1;
+  }
+  fs::create_directories(settings.out);
+  std::vector<ModelSpec> specs;
+  if (settings.models.empty()) {
+    specs = default_models(settings);
+  } else {
+    for (const std::string& path : settings.models) {
+      const std::string name = fs::path(path).stem().string();
+      specs.push_back({name, "fixed", path});
+      if (settings.floating) specs.push_back({name, "floating", path});
+    }
+  }
+  const auto start = Clock::now();
+  std::vector<Row> rows;
+  std::vector<std::string> load_failures;
+  for (const ModelSpec& spec : specs) {
+    try {
+      run_model(spec, settings, rows, load_failures);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s (%s): %s\n", spec.name.c_str(), spec.base.c_str(), e.what());
+      return 1;
+    }
+  }
+  write_csv(settings.out + "/results.csv", rows);
+  write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
+  std::printf("wrote %s/results.csv and results.md (%zu rows) in %.0f s\n", settings.out.c_str(), rows.size(),
+              std::chrono::duration<double>(Clock::now() - start).count());
+  const std::string plot = std::string("/usr/bin/python3 ") + SD_BENCH_PLOT_SCRIPT + " " + settings.out + "/results.csv " +
+                           settings.out + "/benchmark.png";
+  const std::string summary = std::string("/usr/bin/python3 ") + SD_BENCH_SUMMARY_SCRIPT + " " + settings.out +
+                              "/results.csv " + settings.out + "/summary.md";
+  for (const std::string& command : {plot, summary}) {
+    if (std::system(command.c_str()) != 0) {
+      std::fprintf(stderr, "failed: %s\n", command.c_str());
+      return 1;
+    }
+  }
+  return 0;
+}

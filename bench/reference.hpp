@@ -1,0 +1,60 @@
+// The float128 reference for one state: the same algorithms on the double model converted
+// exactly (Model::cast), fed the same double inputs converted exactly.
+#pragma once
+
+#include "benchmark_types.hpp"
+#include "spatial_dynamics/algorithms.hpp"
+#include "spatial_dynamics/reference/high_precision.hpp"
+
+namespace bench {
+
+class Reference {
+ public:
+  using Quad = spatial_dynamics::Quad;
+  using VectorQ = spatial_dynamics::VectorX<Quad>;
+
+  explicit Reference(const spatial_dynamics::Model<double>& model) : model_(model.cast<Quad>()), data_(model_) {}
+
+  /// Computes every reference result for state s; the mass matrix only when `with_mass_matrix`
+  /// (O(n²) in software quad precision: the caller budgets it on large models).
+  void compute(const State& s, bool with_mass_matrix) {
+    namespace sd = spatial_dynamics;
+    const VectorQ q = sd::to_quad(s.q), qd = sd::to_quad(s.qd), qdd = sd::to_quad(s.qdd), tau = sd::to_quad(s.tau);
+    tau_ = sd::rnea(model_, data_, q, qd, qdd);
+    qdd_ = sd::aba(model_, data_, q, qd, tau);
+    g_ = sd::gravity_torques(model_, data_, q);
+    has_mass_matrix_ = with_mass_matrix;
+    if (with_mass_matrix) {
+      const spatial_dynamics::MatrixX<Quad>& M = sd::crba(model_, data_, q);
+      M_ = Eigen::Map<const VectorQ>(M.data(), M.size());
+    }
+    sd::forward_kinematics(model_, data_, q);
+    poses_.resize(12 * (model_.nbodies() - 1));
+    for (int i = 1; i < model_.nbodies(); ++i) {
+      const spatial_dynamics::Matrix3<Quad> R = data_.X_base[i].rotation();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) poses_[12 * (i - 1) + 3 * r + c] = R(r, c);
+      for (int c = 0; c < 3; ++c) poses_[12 * (i - 1) + 9 + c] = data_.X_base[i].translation()[c];
+    }
+  }
+
+  bool has(Algorithm a) const { return a != Algorithm::Crba || has_mass_matrix_; }
+
+  const VectorQ& of(Algorithm a) const {
+    switch (a) {
+      case Algorithm::Rnea: return tau_;
+      case Algorithm::Gravity: return g_;
+      case Algorithm::Crba: return M_;
+      case Algorithm::Fk: return poses_;
+      default: return qdd_;  // every forward dynamics
+    }
+  }
+
+ private:
+  spatial_dynamics::Model<Quad> model_;
+  spatial_dynamics::Data<Quad> data_;
+  VectorQ tau_, qdd_, g_, M_, poses_;
+  bool has_mass_matrix_ = false;
+};
+
+}  // namespace bench

@@ -1,0 +1,92 @@
+// spatial_dynamics itself, in float or double: the model is cast from the double model and every
+// input is converted (rounded, for float) outside the timed region.
+#pragma once
+
+#include <Eigen/Cholesky>
+
+#include "benchmark_types.hpp"
+#include "spatial_dynamics/algorithms.hpp"
+#include "spatial_dynamics/algorithms/aba_refined.hpp"
+
+namespace bench {
+
+template <class S>
+class SpatialDynamicsAdapter : public Adapter {
+ public:
+  explicit SpatialDynamicsAdapter(const spatial_dynamics::Model<double>& model)
+      : model_(model.cast<S>()), data_(model_), refinement_(model_), llt_(model_.nv), rhs_(model_.nv) {}
+
+  std::string library() const override { return "spatial_dynamics"; }
+  std::string scalar() const override { return std::is_same<S, float>::value ? "float" : "double"; }
+  bool supports(Algorithm) const override { return true; }
+  std::string method(Algorithm a) const override {
+    switch (a) {
+      case Algorithm::Rnea: return "rnea";
+      case Algorithm::Aba: return "aba";
+      case Algorithm::AbaRefined: return "aba_refined (long double residual)";
+      case Algorithm::Crba: return "crba";
+      case Algorithm::CrbaCholesky: return "crba + nonlinear_effects + Eigen LLT";
+      case Algorithm::Gravity: return "gravity_torques";
+      case Algorithm::Fk: return "forward_kinematics";
+    }
+    return "";
+  }
+
+  void prepare(const std::vector<State>& states) override {
+    for (const State& s : states) {
+      q_.push_back(s.q.cast<S>());
+      qd_.push_back(s.qd.cast<S>());
+      qdd_.push_back(s.qdd.cast<S>());
+      tau_.push_back(s.tau.cast<S>());
+    }
+  }
+
+  void run(Algorithm a, int k) override {
+    namespace sd = spatial_dynamics;
+    switch (a) {
+      case Algorithm::Rnea: sd::rnea(model_, data_, q_[k], qd_[k], qdd_[k]); return;
+      case Algorithm::Aba: sd::aba(model_, data_, q_[k], qd_[k], tau_[k]); return;
+      case Algorithm::AbaRefined: sd::aba_refined(model_, data_, refinement_, q_[k], qd_[k], tau_[k]); return;
+      case Algorithm::Crba: sd::crba(model_, data_, q_[k]); return;
+      case Algorithm::CrbaCholesky:  // q̈ = M⁻¹ (τ − h), M = LLᵀ
+        llt_.compute(sd::crba(model_, data_, q_[k]));
+        rhs_ = tau_[k] - sd::nonlinear_effects(model_, data_, q_[k], qd_[k]);
+        llt_.solveInPlace(rhs_);
+        return;
+      case Algorithm::Gravity: sd::gravity_torques(model_, data_, q_[k]); return;
+      case Algorithm::Fk: sd::forward_kinematics(model_, data_, q_[k]); return;
+    }
+  }
+
+  Eigen::VectorXd result(Algorithm a) override {
+    switch (a) {
+      case Algorithm::Rnea:
+      case Algorithm::Gravity: return data_.tau.template cast<double>();
+      case Algorithm::Aba:
+      case Algorithm::AbaRefined: return data_.qdd.template cast<double>();
+      case Algorithm::CrbaCholesky: return rhs_.template cast<double>();
+      case Algorithm::Crba: return Eigen::Map<const spatial_dynamics::VectorX<S>>(data_.M.data(), data_.M.size()).template cast<double>();
+      case Algorithm::Fk: {
+        Eigen::VectorXd poses(12 * (model_.nbodies() - 1));
+        for (int i = 1; i < model_.nbodies(); ++i) {
+          const spatial_dynamics::Matrix3<S> R = data_.X_base[i].rotation();
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) poses[12 * (i - 1) + 3 * r + c] = static_cast<double>(R(r, c));
+          for (int c = 0; c < 3; ++c) poses[12 * (i - 1) + 9 + c] = static_cast<double>(data_.X_base[i].translation()[c]);
+        }
+        return poses;
+      }
+    }
+    return {};
+  }
+
+ private:
+  spatial_dynamics::Model<S> model_;
+  spatial_dynamics::Data<S> data_;
+  spatial_dynamics::RefinementWorkspace<S> refinement_;
+  Eigen::LLT<spatial_dynamics::MatrixX<S>> llt_;
+  spatial_dynamics::VectorX<S> rhs_;
+  std::vector<spatial_dynamics::VectorX<S>> q_, qd_, qdd_, tau_;
+};
+
+}  // namespace bench

@@ -1,0 +1,36 @@
+// The models the node serves: the robot as loaded (payloads attached) and one model per scene.
+// Immutable once built; the node swaps whole objects, so a call in progress keeps its own.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/ros/joint_request_decoder.hpp"
+#include "spatial_dynamics/ros/joint_state_cache.hpp"
+
+namespace spatial_dynamics {
+
+/// The robot as loaded: immutable, replaced on ~reload and on ~set_payload.
+struct ServedRobot {
+  std::shared_ptr<const Model<double>> bare;  // from robot_description, independent joints
+  std::shared_ptr<const Model<double>> full;  // with the payloads attached
+  std::shared_ptr<JointStateCache> cache;     // every joint of the robot; survives payload changes
+  std::string robot_name;
+  std::string root_frame;                     // the URDF root link: the frame tf chains through
+};
+
+/// One scene's model: immutable, replaced when a locked joint moves or the robot changes.
+struct ServedScene {
+  std::uint64_t version = 0;                  // unique per build; keys the per-thread workspaces
+  std::shared_ptr<const ServedRobot> robot;
+  std::shared_ptr<const Model<double>> model;
+  std::unique_ptr<JointRequestDecoder> decoder;
+  std::vector<std::pair<int, double>> locks;  // (joint-state index, locked position)
+  std::string error;                          // why the scene has no model ("" when it has one)
+};
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,61 @@
+// What each service computes, from a request message to a response message, on one served
+// scene. No node handle, master or tf2 here: frames outside the robot come through FrameLookup,
+// so the handlers run (and are fuzzed and tested) without ROS running. Errors are exceptions whose
+// message names the culprit; the node turns them into success = false.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "spatial_dynamics/ForwardDynamics.h"
+#include "spatial_dynamics/InverseDynamics.h"
+#include "spatial_dynamics/MassMatrix.h"
+#include "spatial_dynamics/TransformWrench.h"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/ros/served_model.hpp"
+
+namespace spatial_dynamics {
+
+/// Per-thread buffers of one scene, rebuilt when the scene's model changes (Data is allocated
+/// once per model).
+struct Workspace {
+  std::uint64_t version = 0;
+  std::unique_ptr<Data<double>> data;
+  JointStateCache::Snapshot state;
+  std::vector<int> indices;
+  Eigen::VectorXd q, qd, x;
+  std::vector<ForceVector<double>> f_ext;
+};
+
+/// Adds `more` to a response message ("a; b").
+void append_message(std::string& message, const std::string& more);
+
+/// This thread's workspace for scene slot `scene_index`, made ready for `scene`.
+Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene);
+
+/// Frames that are not part of the robot model (tf2 in the node).
+class FrameLookup {
+ public:
+  virtual ~FrameLookup() = default;
+  virtual bool hasFrame(const std::string& frame) const = 0;
+  /// ^{target}X_{source} at `stamp` (zero = latest); throws naming the frames when it cannot.
+  virtual PluckerTransform<double> transform(const std::string& target, const std::string& source,
+                                             const ros::Time& stamp) const = 0;
+};
+
+void compute_inverse_dynamics(const ServedScene& scene, Workspace& ws, const InverseDynamics::Request& req,
+                              InverseDynamics::Response& res);
+void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const ForwardDynamics::Request& req,
+                              ForwardDynamics::Response& res);
+void compute_mass_matrix(const ServedScene& scene, Workspace& ws, const MassMatrix::Request& req,
+                         MassMatrix::Response& res);
+void compute_transform_wrench(const ServedScene& scene, Workspace& ws, const FrameLookup& frames,
+                              const TransformWrench::Request& req, TransformWrench::Response& res);
+
+/// ID(q, q̇, 0) of the latest joint states, for ~computed_torques; false when they are incomplete.
+bool compute_latest_torques(const ServedScene& scene, Workspace& ws, std::vector<double>& position,
+                            std::vector<double>& velocity, std::vector<double>& effort);
+
+}  // namespace spatial_dynamics
