@@ -396,7 +396,8 @@ bool DynamicsNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
   return true;
 }
 
-void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
+void DynamicsNode::onJointStates(const ros::MessageEvent<sensor_msgs::JointState const>& event) {
+  const sensor_msgs::JointState::ConstPtr& msg = event.getConstMessage();
   ++joint_state_messages_;
   last_joint_state_time_ = ros::WallTime::now().toSec();
   std::shared_ptr<const ServedRobot> robot;
@@ -420,6 +421,7 @@ void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
                  "ignored (~unknown_joints: ignore)",
                  name.c_str());
   }
+  bool published = false;
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) {
     std::shared_ptr<const ServedScene> served = scene(k);
     if (!served || !served->model || served->robot != robot) continue;
@@ -448,10 +450,12 @@ void DynamicsNode::onJointStates(const sensor_msgs::JointState::ConstPtr& msg) {
       out.name = served->decoder->jointNames();
       endpoints_[k].computed_torques.publish(out);
       ++torque_messages_;
+      published = true;
     } catch (const std::exception& e) {
       ROS_WARN_THROTTLE(5.0, "dynamics: no computed torques for this joint state: %s", e.what());
     }
   }
+  if (published) torque_latency_us_.record((ros::Time::now() - event.getReceiptTime()).toSec() * 1e6);
 }
 
 void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
@@ -466,6 +470,11 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const double last = last_joint_state_time_;
   status.add("joint_states age [s]", last > 0 ? now.toSec() - last : -1.0);
   status.add("joint_states dropped", static_cast<long>(joint_state_drops_));
+  const LatencyRecorder::Summary latency = torque_latency_us_.summary();
+  status.add("computed_torques latency window [messages]", latency.count);
+  status.add("computed_torques latency p50 [us]", latency.p50);
+  status.add("computed_torques latency p99 [us]", latency.p99);
+  status.add("computed_torques latency max [us]", latency.max);
   status.add("transform_wrench calls", static_cast<long>(transform_wrench_.calls));
   status.add("transform_wrench failures", static_cast<long>(transform_wrench_.failures));
   std::string scene_errors;
