@@ -39,14 +39,22 @@ inline std::string at_state(Eigen::Index k, const std::string& message) {
 template <class S, int L>
 void gather_lanes(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixRef<S>& q, const ConstMatrixRef<S>& qd,
                   const ConstMatrixRef<S>& qdd, Eigen::Index c0, int count) {
+  const S* q_col[L];
+  const S* qd_col[L];
+  const S* qdd_col[L];
   for (int l = 0; l < L; ++l) {
     const Eigen::Index c = c0 + std::min(l, count - 1);
-    for (int k = 0; k < model.nq; ++k) data.q[k].set(l, q(k, c));
-    for (int k = 0; k < model.nv; ++k) {
-      data.qd[k].set(l, qd(k, c));
-      data.qdd[k].set(l, qdd(k, c));
-    }
+    q_col[l] = &q.coeffRef(0, c);
+    qd_col[l] = &qd.coeffRef(0, c);
+    qdd_col[l] = &qdd.coeffRef(0, c);
   }
+  for (int k = 0; k < model.nq; ++k)
+    for (int l = 0; l < L; ++l) data.q[k].set(l, q_col[l][k]);
+  for (int k = 0; k < model.nv; ++k)
+    for (int l = 0; l < L; ++l) {
+      data.qd[k].set(l, qd_col[l][k]);
+      data.qdd[k].set(l, qdd_col[l][k]);
+    }
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     if (j.type != JointType::Free) continue;
@@ -72,7 +80,10 @@ void rnea_lanes(const Model<S>& model, BatchData<S, L>& data) {
     const int lambda = model.parent[i];
     const Lanes<S, L>* qd = &data.qd[j.idx_v];
     joint_up_transform_lanes(model, i, &data.q[j.idx_q], data.X_up[i]);
-    data.v[i] = data.X_up[i].apply(data.v[lambda]);                        // v_i = X v_λ + S q̇
+    if (lambda > 0)
+      data.v[i] = data.X_up[i].apply(data.v[lambda]);                      // v_i = X v_λ + S q̇
+    else
+      data.v[i] = LaneMotion<S, L>::Zero();                                //   (v_0 = 0)
     add_joint_motion(j, qd, data.v[i]);
     data.a[i] = data.X_up[i].apply(data.a[lambda]);                        // a_i = X a_λ + S q̈ + v_i × S q̇
     add_joint_motion(j, &data.qdd[j.idx_v], data.a[i]);
