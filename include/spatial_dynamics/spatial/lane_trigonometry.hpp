@@ -52,16 +52,17 @@ SD_LANE_INLINE void sincos_lanes(const Lanes<S, L>& x, Lanes<S, L>& sine, Lanes<
   const Lane half_z = S(0.5) * z;
   const Lane w = S(1) - half_z;
   const Lane cos_r = w + (((S(1) - w) - half_z) + z * pc);
-  // x = r + k π/2: (sin, cos) x = (sin r, cos r), (cos r, −sin r), (−sin r, −cos r), (−cos r, sin r).
-  for (int l = 0; l < L; ++l) {
-    const S sr = sin_r[l], cr = cos_r[l];
-    switch (static_cast<long>(k[l]) & 3) {
-      case 0: sine.set(l, sr); cosine.set(l, cr); break;
-      case 1: sine.set(l, cr); cosine.set(l, -sr); break;
-      case 2: sine.set(l, -sr); cosine.set(l, -cr); break;
-      default: sine.set(l, -cr); cosine.set(l, sr); break;
-    }
-  }
+  // x = r + k π/2: (sin, cos) x = (sin r, cos r), (cos r, −sin r), (−sin r, −cos r), (−cos r, sin r) for
+  // k mod 4 = 0 … 3, picked without branches (the quadrant is random from lane to lane): with
+  // o = k mod 2 and h = ⌊k/2⌋ mod 2, each 0 or 1, the products below only select and negate.
+  const Lane odd_k = k - S(2) * ((k * S(0.5) + round_to_integer) - round_to_integer);  // ±1 or 0
+  const Lane o = odd_k * odd_k;
+  const Lane half_k = (k - o) * S(0.5);
+  const Lane odd_half_k = half_k - S(2) * ((half_k * S(0.5) + round_to_integer) - round_to_integer);
+  const Lane sign = S(1) - S(2) * (odd_half_k * odd_half_k);
+  const Lane keep = S(1) - o;
+  sine = sign * (keep * sin_r + o * cos_r);
+  cosine = sign * (keep * cos_r - o * sin_r);
 }
 
 }  // namespace spatial_dynamics
