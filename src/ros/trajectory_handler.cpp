@@ -49,9 +49,9 @@ std::string differences_note(std::size_t velocities, std::size_t accelerations, 
   if (count == 2)
     return what + " by finite differences over time_from_start: the slope between the two points (one-sided)";
   return what +
-         " by finite differences of the positions over time_from_start: central (quadratic through the point and "
-         "its neighbours) inside, one-sided (quadratic through the first or last three points) at the first and "
-         "last point";
+         " by finite differences of the positions over time_from_start: central differences inside (the quadratic "
+         "through the point and its neighbours), one-sided at the first and last point (the quadratic through the "
+         "first or last three points)";
 }
 
 }  // namespace
@@ -86,8 +86,9 @@ void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws
   if (missing_velocities + missing_accelerations > 0) {
     const std::string why = " (needed for the velocities or accelerations the points leave out, by finite differences)";
     // A line through two points gives velocities; accelerations need a quadratic, three points.
-    for (const auto& [missing, what, needed] : {std::tuple<std::size_t, const char*, std::size_t>{missing_velocities, "velocities", 2},
-                                                {missing_accelerations, "accelerations", 3}})
+    using Need = std::tuple<std::size_t, const char*, std::size_t>;  // missing, what, points needed
+    for (const auto& [missing, what, needed] :
+         {Need{missing_velocities, "velocities", 2}, Need{missing_accelerations, "accelerations", 3}})
       if (missing > 0 && count < needed)
         throw std::runtime_error("the trajectory has " + std::to_string(count) + " point(s); " + what +
                                  " by finite differences need at least " + std::to_string(needed) +
@@ -136,12 +137,12 @@ void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws
       if (!p.velocities.empty()) {
         qd(i, k) = p.velocities[m];
       } else {
-        for (std::size_t s = 0; s < w.count; ++s) qd(i, k) += w.first[s] * q(i, w.start + s);    // q̇_k ≈ Σ w'_s q_s
+        for (std::size_t s = 0; s < w.count; ++s) qd(i, k) += w.first[s] * q(i, w.start + s);  // q̇_k ≈ Σ w'_s q_s
       }
       if (!p.accelerations.empty()) {
         qdd(i, k) = p.accelerations[m];
       } else {
-        for (std::size_t s = 0; s < w.count; ++s) qdd(i, k) += w.second[s] * q(i, w.start + s);  // q̈_k ≈ Σ w''_s q_s
+        for (std::size_t s = 0; s < w.count; ++s) qdd(i, k) += w.second[s] * q(i, w.start + s);  // q̈_k ≈ Σ w''q_s
       }
     }
   }

@@ -68,7 +68,8 @@ SD_LANE_INLINE Lanes<S, L> along_axis_lanes(const Joint<S>& j, const LaneVector3
 /// ^iX_λ(i) = X_J(q_i) X_tree(i) per lane (RBDA Table 4.1); `q` points at the lanes of the joint's
 /// first coordinate. A free joint's quaternion must already have been checked for unit norm.
 template <class S, int L>
-SD_LANE_INLINE void joint_up_transform_lanes(const Model<S>& model, int i, const Lanes<S, L>* q, LaneTransform<S, L>& X) {
+SD_LANE_INLINE void joint_up_transform_lanes(const Model<S>& model, int i, const Lanes<S, L>* q,
+                                             LaneTransform<S, L>& X) {
   using Lane = Lanes<S, L>;
   const Joint<S>& j = model.joints[i];
   const PluckerTransform<S>& Xt = model.X_tree[i];
@@ -154,7 +155,8 @@ SD_LANE_INLINE void add_joint_motion(const Joint<S>& j, const Lanes<S, L>* qd, L
 
 /// v × S q̇   (eq. 17 with the joint's motion; the zero half of S q̇ skipped)
 template <class S, int L>
-SD_LANE_INLINE LaneMotion<S, L> joint_motion_cross(const Joint<S>& j, const LaneMotion<S, L>& v, const Lanes<S, L>* qd) {
+SD_LANE_INLINE LaneMotion<S, L> joint_motion_cross(const Joint<S>& j, const LaneMotion<S, L>& v,
+                                                   const Lanes<S, L>* qd) {
   switch (j.type) {
     case JointType::Revolute:  // S q̇ = (a q̇; 0): (ω × a q̇ ; v × a q̇)
       return {detail::cross_with_axis(j, v.angular, qd[0]), detail::cross_with_axis(j, v.linear, qd[0])};

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels_lanes.hpp"
@@ -64,8 +65,8 @@ void gather_lanes(const Model<S>& model, BatchData<S, L>& data, const ConstMatri
       using std::abs;
       if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
         throw std::invalid_argument(at_state(c0 + l, "joint '" + model.joint_names[i] + "': the quaternion (q[" +
-                                                         std::to_string(j.idx_q + 3) + ".." + std::to_string(j.idx_q + 6) +
-                                                         "]) is not of unit norm"));
+                                                         std::to_string(j.idx_q + 3) + ".." +
+                                                         std::to_string(j.idx_q + 6) + "]) is not of unit norm"));
     }
   }
 }

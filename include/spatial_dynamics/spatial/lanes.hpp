@@ -128,7 +128,9 @@ struct LaneVector3 {
   }
 
   /// a × b, lane by lane.
-  SD_LANE_INLINE LaneVector3 cross(const LaneVector3& b) const { return {y * b.z - z * b.y, z * b.x - x * b.z, x * b.y - y * b.x}; }
+  SD_LANE_INLINE LaneVector3 cross(const LaneVector3& b) const {
+    return {y * b.z - z * b.y, z * b.x - x * b.z, x * b.y - y * b.x};
+  }
 };
 
 /// a × b for a vector a that is the same in every lane.
@@ -205,7 +207,9 @@ struct LaneTransform {
   LaneVector3<S, L> r;
 
   /// X m = (E ω ; E (v − r×ω))   (eq. 11)
-  SD_LANE_INLINE LaneMotion<S, L> apply(const LaneMotion<S, L>& m) const { return {E * m.angular, E * (m.linear - r.cross(m.angular))}; }
+  SD_LANE_INLINE LaneMotion<S, L> apply(const LaneMotion<S, L>& m) const {
+    return {E * m.angular, E * (m.linear - r.cross(m.angular))};
+  }
   /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)   (eq. 12 inverted)
   SD_LANE_INLINE LaneForce<S, L> applyInverse(const LaneForce<S, L>& f) const {
     const LaneVector3<S, L> lin = E.transposeTimes(f.linear);
