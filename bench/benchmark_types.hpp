@@ -11,10 +11,10 @@
 
 namespace bench {
 
-enum class Algorithm { Rnea, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk };
+enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk };
 
 inline const std::vector<Algorithm>& all_algorithms() {
-  static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::Aba,     Algorithm::AbaRefined,
+  static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::RneaBatch, Algorithm::Aba, Algorithm::AbaRefined,
                                              Algorithm::Crba,         Algorithm::CrbaCholesky,
                                              Algorithm::Gravity,      Algorithm::Fk};
   return all;
@@ -24,6 +24,7 @@ inline const std::vector<Algorithm>& all_algorithms() {
 inline const char* name(Algorithm a) {
   switch (a) {
     case Algorithm::Rnea: return "rnea";
+    case Algorithm::RneaBatch: return "rnea_batch";
     case Algorithm::Aba: return "aba";
     case Algorithm::AbaRefined: return "aba_refined";
     case Algorithm::Crba: return "crba";
@@ -60,6 +61,9 @@ class Adapter {
   virtual std::string method(Algorithm a) const = 0;  // what the library calls, for the table
   virtual void prepare(const std::vector<State>& states) = 0;
   virtual void run(Algorithm a, int state) = 0;
+  /// States one run() evaluates (a batched algorithm: the pool's states from `state` on, cyclically);
+  /// its times are reported per state. result() is then that of state `state`.
+  virtual int states_per_call(Algorithm) const { return 1; }
   virtual Eigen::VectorXd result(Algorithm a) = 0;
 };
 

@@ -150,8 +150,8 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// ns per call: warm-up, then `repeats` runs of `calls` calls (fewer when a call is slow) over the
-/// state pool; allocations counted over the timed calls.
+/// ns per call (per state for a batched call): warm-up, then `repeats` runs of `calls` calls (fewer
+/// when a call is slow) over the state pool; allocations counted over the timed calls.
 void time_calls(Adapter& adapter, Algorithm a, int pool, const Settings& settings, Row& row) {
   const auto warm_start = Clock::now();
   int warm = 0;
@@ -169,9 +169,10 @@ void time_calls(Adapter& adapter, Algorithm a, int pool, const Settings& setting
     allocations += allocation_count() - before;
     ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / calls);
   }
-  row.ns_median = median(ns);
-  row.ns_min = *std::min_element(ns.begin(), ns.end());
-  row.ns_max = *std::max_element(ns.begin(), ns.end());
+  const double states = adapter.states_per_call(a);  // a batched call: time per state
+  row.ns_median = median(ns) / states;
+  row.ns_min = *std::min_element(ns.begin(), ns.end()) / states;
+  row.ns_max = *std::max_element(ns.begin(), ns.end()) / states;
   row.allocs = static_cast<double>(allocations) / (static_cast<double>(calls) * settings.repeats);
   row.calls = calls;
   row.repeats = settings.repeats;

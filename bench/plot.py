@@ -20,7 +20,7 @@ libraries = {
     ("dart", "double"): ("DART 6.12", "tab:orange"),
     ("mujoco", "double"): ("MuJoCo 2.2.2", "tab:red"),
 }
-markers = {"rnea": "o", "aba": "s", "aba_refined": "*", "crba": "^", "crba_cholesky": "D", "gravity": "v", "fk": "x"}
+markers = {"rnea": "o", "rnea_batch": "P", "aba": "s", "aba_refined": "*", "crba": "^", "crba_cholesky": "D", "gravity": "v", "fk": "x"}
 FLOOR = 1e-19  # an exact result (error 0) is drawn here
 CEILING = 1e2  # errors above (float solves of the 1000-body chain) are drawn here, as open markers
 

@@ -42,7 +42,8 @@ class Reference {
 
   const VectorQ& of(Algorithm a) const {
     switch (a) {
-      case Algorithm::Rnea: return tau_;
+      case Algorithm::Rnea:
+      case Algorithm::RneaBatch: return tau_;
       case Algorithm::Gravity: return g_;
       case Algorithm::Crba: return M_;
       case Algorithm::Fk: return poses_;

@@ -7,6 +7,7 @@
 #include "benchmark_types.hpp"
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
+#include "spatial_dynamics/algorithms/rnea_batch.hpp"
 
 namespace bench {
 
@@ -14,7 +15,8 @@ template <class S>
 class SpatialDynamicsAdapter : public Adapter {
  public:
   explicit SpatialDynamicsAdapter(const spatial_dynamics::Model<double>& model)
-      : model_(model.cast<S>()), data_(model_), refinement_(model_), llt_(model_.nv), rhs_(model_.nv) {}
+      : model_(model.cast<S>()), data_(model_), refinement_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
+        batch_tau_(model_.nv, kBatchStates) {}
 
   std::string library() const override { return "spatial_dynamics"; }
   std::string scalar() const override { return std::is_same<S, float>::value ? "float" : "double"; }
@@ -22,6 +24,9 @@ class SpatialDynamicsAdapter : public Adapter {
   std::string method(Algorithm a) const override {
     switch (a) {
       case Algorithm::Rnea: return "rnea";
+      case Algorithm::RneaBatch:
+        return "rnea_batch (" + std::to_string(kBatchStates) + " states per call, " +
+               std::to_string(spatial_dynamics::kDefaultBatchLanes<S>) + " lanes; time per state)";
       case Algorithm::Aba: return "aba";
       case Algorithm::AbaRefined: return "aba_refined (long double residual)";
       case Algorithm::Crba: return "crba";
@@ -39,12 +44,29 @@ class SpatialDynamicsAdapter : public Adapter {
       qdd_.push_back(s.qdd.cast<S>());
       tau_.push_back(s.tau.cast<S>());
     }
+    // The pool as columns, its first kBatchStates − 1 states repeated at the end, so that the
+    // kBatchStates states from any k on are one block of columns.
+    const int n = static_cast<int>(states.size());
+    batch_q_.resize(model_.nq, n + kBatchStates - 1);
+    batch_qd_.resize(model_.nv, n + kBatchStates - 1);
+    batch_qdd_.resize(model_.nv, n + kBatchStates - 1);
+    for (int c = 0; c < n + kBatchStates - 1; ++c) {
+      batch_q_.col(c) = q_[c % n];
+      batch_qd_.col(c) = qd_[c % n];
+      batch_qdd_.col(c) = qdd_[c % n];
+    }
   }
+
+  int states_per_call(Algorithm a) const override { return a == Algorithm::RneaBatch ? kBatchStates : 1; }
 
   void run(Algorithm a, int k) override {
     namespace sd = spatial_dynamics;
     switch (a) {
       case Algorithm::Rnea: sd::rnea(model_, data_, q_[k], qd_[k], qdd_[k]); return;
+      case Algorithm::RneaBatch:  // states k … k + kBatchStates − 1 of the pool
+        sd::rnea_batch(model_, batch_, batch_q_.middleCols(k, kBatchStates), batch_qd_.middleCols(k, kBatchStates),
+                       batch_qdd_.middleCols(k, kBatchStates), batch_tau_);
+        return;
       case Algorithm::Aba: sd::aba(model_, data_, q_[k], qd_[k], tau_[k]); return;
       case Algorithm::AbaRefined: sd::aba_refined(model_, data_, refinement_, q_[k], qd_[k], tau_[k]); return;
       case Algorithm::Crba: sd::crba(model_, data_, q_[k]); return;
@@ -62,6 +84,7 @@ class SpatialDynamicsAdapter : public Adapter {
     switch (a) {
       case Algorithm::Rnea:
       case Algorithm::Gravity: return data_.tau.template cast<double>();
+      case Algorithm::RneaBatch: return batch_tau_.col(0).template cast<double>();
       case Algorithm::Aba:
       case Algorithm::AbaRefined: return data_.qdd.template cast<double>();
       case Algorithm::CrbaCholesky: return rhs_.template cast<double>();
@@ -87,6 +110,9 @@ class SpatialDynamicsAdapter : public Adapter {
   Eigen::LLT<spatial_dynamics::MatrixX<S>> llt_;
   spatial_dynamics::VectorX<S> rhs_;
   std::vector<spatial_dynamics::VectorX<S>> q_, qd_, qdd_, tau_;
+  static constexpr int kBatchStates = 64;  // a trajectory's worth per rnea_batch call
+  spatial_dynamics::BatchData<S> batch_;
+  spatial_dynamics::MatrixX<S> batch_q_, batch_qd_, batch_qdd_, batch_tau_;
 };
 
 }  // namespace bench

@@ -39,7 +39,8 @@ def cell(model, library, scalar, algorithms, label_algorithm):
 
 out = ["Cells: max relative error · median time per call (all rows, with spreads, allocations and state counts: "
        "results.md).\n"]
-for title, algorithms, label in [("Inverse dynamics (rnea)", ["rnea"], False),
+for title, algorithms, label in [("Inverse dynamics (rnea; rnea_batch: time per state, 64 states per call)",
+                                  ["rnea", "rnea_batch"], True),
                                  ("Forward dynamics", ["aba", "aba_refined", "crba_cholesky"], True),
                                  ("Mass matrix (crba)", ["crba"], False)]:
     out.append(f"\n**{title}**\n")

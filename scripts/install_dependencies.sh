@@ -11,10 +11,10 @@ packages=(
   googletest libgtest-dev
   liborocos-kdl-dev libkdl-parser-dev
   ros-message-generation python3-genpy
-  libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
+  libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev
   python3-rospy python3-roslaunch python3-rosservice python3-rostopic
-  python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-std-srvs
+  python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-trajectory-msgs python3-std-srvs
 )
 packages+=("$@")
 

@@ -38,6 +38,7 @@ echo
 echo "== one call of each service (joints left out take the latest joint_states)"
 show rosservice call /dynamics/inverse_dynamics "{}"
 show rosservice call /dynamics/inverse_dynamics "{name: [panda_joint2, panda_joint4], acceleration: [1.0, -0.5], external_wrenches: [{header: {frame_id: panda_hand}, wrench: {force: {x: 0.0, y: 0.0, z: -20.0}}}]}"
+show rosservice call /dynamics/inverse_dynamics_trajectory "{trajectory: {joint_names: [panda_joint2, panda_joint4], points: [{positions: [0.0, -1.5], time_from_start: {secs: 0}}, {positions: [0.1, -1.4], time_from_start: {secs: 1}}, {positions: [0.3, -1.2], time_from_start: {secs: 2}}]}}"
 show rosservice call /dynamics/forward_dynamics "{name: [panda_joint4], effort: [5.0]}"
 show rosservice call /dynamics/mass_matrix "{}"
 show rosservice call /dynamics/transform_wrench "{wrench: {header: {frame_id: panda_hand}, wrench: {force: {x: 0.0, y: 0.0, z: -10.0}}}, target_frame: panda_link0}"

@@ -152,6 +152,9 @@ void DynamicsNode::advertiseScene(std::size_t k) {
   SceneEndpoints& e = endpoints_[k];
   e.services.push_back(private_nh_.advertiseService<InverseDynamics::Request, InverseDynamics::Response>(
       prefix + "inverse_dynamics", [this, k](auto& req, auto& res) { return onInverseDynamics(k, req, res); }));
+  e.services.push_back(private_nh_.advertiseService<InverseDynamicsTrajectory::Request, InverseDynamicsTrajectory::Response>(
+      prefix + "inverse_dynamics_trajectory",
+      [this, k](auto& req, auto& res) { return onInverseDynamicsTrajectory(k, req, res); }));
   e.services.push_back(private_nh_.advertiseService<ForwardDynamics::Request, ForwardDynamics::Response>(
       prefix + "forward_dynamics", [this, k](auto& req, auto& res) { return onForwardDynamics(k, req, res); }));
   e.services.push_back(private_nh_.advertiseService<MassMatrix::Request, MassMatrix::Response>(
@@ -276,6 +279,13 @@ bool DynamicsNode::serve(std::size_t index, Counters& counters, Response& res, C
 bool DynamicsNode::onInverseDynamics(std::size_t k, InverseDynamics::Request& req, InverseDynamics::Response& res) {
   return serve(k, endpoints_[k].inverse_dynamics, res,
                [&](const ServedScene& scene, Workspace& ws) { compute_inverse_dynamics(scene, ws, req, res); });
+}
+
+bool DynamicsNode::onInverseDynamicsTrajectory(std::size_t k, InverseDynamicsTrajectory::Request& req,
+                                               InverseDynamicsTrajectory::Response& res) {
+  return serve(k, endpoints_[k].inverse_dynamics_trajectory, res, [&](const ServedScene& scene, Workspace& ws) {
+    compute_inverse_dynamics_trajectory(scene, ws, req, res);
+  });
 }
 
 bool DynamicsNode::onForwardDynamics(std::size_t k, ForwardDynamics::Request& req, ForwardDynamics::Response& res) {
@@ -481,6 +491,7 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   for (std::size_t k = 0; k < endpoints_.size(); ++k) {
     const std::string prefix = scene_configs_[k].name.empty() ? "" : scene_configs_[k].name + "/";
     for (const auto& [name, counters] : {std::pair<const char*, const Counters*>{"inverse_dynamics", &endpoints_[k].inverse_dynamics},
+                                         {"inverse_dynamics_trajectory", &endpoints_[k].inverse_dynamics_trajectory},
                                          {"forward_dynamics", &endpoints_[k].forward_dynamics},
                                          {"mass_matrix", &endpoints_[k].mass_matrix}}) {
       status.add(prefix + name + " calls", static_cast<long>(counters->calls));

@@ -117,6 +117,7 @@ Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene) {
   Workspace& ws = workspaces[scene_index];
   if (ws.version != scene.version) {
     ws.data = std::make_unique<Data<double>>(*scene.model);
+    ws.batch = std::make_unique<BatchData<double>>(*scene.model);
     ws.f_ext.assign(scene.model->nbodies(), ForceVector<double>::Zero());
     ws.version = scene.version;
   }

@@ -22,6 +22,7 @@
 
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
+#include "spatial_dynamics/InverseDynamicsTrajectory.h"
 #include "spatial_dynamics/MassMatrix.h"
 #include "spatial_dynamics/SetPayload.h"
 #include "spatial_dynamics/TransformWrench.h"
@@ -56,7 +57,7 @@ class DynamicsNode {
   struct SceneEndpoints {
     std::vector<ros::ServiceServer> services;
     ros::Publisher computed_torques;
-    Counters inverse_dynamics, forward_dynamics, mass_matrix;
+    Counters inverse_dynamics, inverse_dynamics_trajectory, forward_dynamics, mass_matrix;
   };
 
   std::shared_ptr<const ServedRobot> loadRobot(const std::map<std::string, Payload>& payloads) const;
@@ -71,6 +72,8 @@ class DynamicsNode {
   void advertiseScene(std::size_t index);
 
   bool onInverseDynamics(std::size_t scene, InverseDynamics::Request& req, InverseDynamics::Response& res);
+  bool onInverseDynamicsTrajectory(std::size_t scene, InverseDynamicsTrajectory::Request& req,
+                                   InverseDynamicsTrajectory::Response& res);
   bool onForwardDynamics(std::size_t scene, ForwardDynamics::Request& req, ForwardDynamics::Response& res);
   bool onMassMatrix(std::size_t scene, MassMatrix::Request& req, MassMatrix::Response& res);
   bool onTransformWrench(TransformWrench::Request& req, TransformWrench::Response& res);

@@ -11,8 +11,10 @@
 
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
+#include "spatial_dynamics/InverseDynamicsTrajectory.h"
 #include "spatial_dynamics/MassMatrix.h"
 #include "spatial_dynamics/TransformWrench.h"
+#include "spatial_dynamics/model/batch_data.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/ros/served_model.hpp"
 
@@ -23,10 +25,12 @@ namespace spatial_dynamics {
 struct Workspace {
   std::uint64_t version = 0;
   std::unique_ptr<Data<double>> data;
+  std::unique_ptr<BatchData<double>> batch;  // trajectories: several states per RNEA pass
   JointStateCache::Snapshot state;
   std::vector<int> indices;
   Eigen::VectorXd q, qd, x;
   std::vector<ForceVector<double>> f_ext;
+  Eigen::MatrixXd trajectory_q, trajectory_qd, trajectory_qdd, trajectory_tau;  // one column per point
 };
 
 /// Adds `more` to a response message ("a; b").
@@ -47,6 +51,11 @@ class FrameLookup {
 
 void compute_inverse_dynamics(const ServedScene& scene, Workspace& ws, const InverseDynamics::Request& req,
                               InverseDynamics::Response& res);
+/// τ at every point of a trajectory (batched RNEA), with peak efforts and effort-limit violations;
+/// missing velocities and accelerations by finite differences (trajectory_handler.cpp).
+void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws,
+                                         const InverseDynamicsTrajectory::Request& req,
+                                         InverseDynamicsTrajectory::Response& res);
 void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const ForwardDynamics::Request& req,
                               ForwardDynamics::Response& res);
 void compute_mass_matrix(const ServedScene& scene, Workspace& ws, const MassMatrix::Request& req,

@@ -1,0 +1,160 @@
+// Inverse dynamics of many states of one model: τ_k = ID(q_k, q̇_k, q̈_k) for the columns k of a
+// trajectory. The states go through the RNEA of rnea.hpp (RBDA Table 5.1) L at a time, one per
+// lane (spatial/lanes.hpp): every spatial operation acts on all L states at once, which the
+// compiler turns into vector instructions, and the joint dispatch and the loads of the model's
+// constants are shared by the L states. Columns are taken in blocks of L; a last, partial block
+// fills its unused lanes with a copy of its last state and discards their results. Each lane
+// computes what rnea computes for its state, formula by formula.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels_lanes.hpp"
+#include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/model/batch_data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+
+namespace spatial_dynamics {
+
+/// Read-only and writable views of a matrix argument (states as columns); the scalar is deduced
+/// from the Model. Any matrix or block of columns with contiguous columns binds without a copy.
+template <class S>
+using ConstMatrixRef = typename detail::NonDeduced<Eigen::Ref<const MatrixX<S>>>::type;
+template <class S>
+using MatrixRef = typename detail::NonDeduced<Eigen::Ref<MatrixX<S>>>::type;
+
+namespace detail {
+
+/// "state k: " in front of an error's message.
+inline std::string at_state(Eigen::Index k, const std::string& message) {
+  return "state " + std::to_string(k) + ": " + message;
+}
+
+/// Copies the columns c0 .. c0 + count − 1 into the lanes (lane l ≥ count repeats the last one)
+/// and checks the unit norm of free joints' quaternions as joint_up_transform does.
+template <class S, int L>
+void gather_lanes(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixRef<S>& q, const ConstMatrixRef<S>& qd,
+                  const ConstMatrixRef<S>& qdd, Eigen::Index c0, int count) {
+  const S* q_col[L];
+  const S* qd_col[L];
+  const S* qdd_col[L];
+  for (int l = 0; l < L; ++l) {
+    const Eigen::Index c = c0 + std::min(l, count - 1);
+    q_col[l] = &q.coeffRef(0, c);
+    qd_col[l] = &qd.coeffRef(0, c);
+    qdd_col[l] = &qdd.coeffRef(0, c);
+  }
+  for (int k = 0; k < model.nq; ++k)
+    for (int l = 0; l < L; ++l) data.q[k].set(l, q_col[l][k]);
+  for (int k = 0; k < model.nv; ++k)
+    for (int l = 0; l < L; ++l) {
+      data.qd[k].set(l, qd_col[l][k]);
+      data.qdd[k].set(l, qdd_col[l][k]);
+    }
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<S>& j = model.joints[i];
+    if (j.type != JointType::Free) continue;
+    for (int l = 0; l < count; ++l) {
+      const Eigen::Quaternion<S> quat(data.q[j.idx_q + 6][l], data.q[j.idx_q + 3][l], data.q[j.idx_q + 4][l],
+                                      data.q[j.idx_q + 5][l]);
+      using std::abs;
+      if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
+        throw std::invalid_argument(at_state(c0 + l, "joint '" + model.joint_names[i] + "': the quaternion (q[" +
+                                                         std::to_string(j.idx_q + 3) + ".." +
+                                                         std::to_string(j.idx_q + 6) + "]) is not of unit norm"));
+    }
+  }
+}
+
+/// The RNEA of rnea_impl on the L states in the lanes; τ in data.tau. Models without coupled joints.
+template <class S, int L>
+void rnea_lanes(const Model<S>& model, BatchData<S, L>& data) {
+  data.v[0] = LaneMotion<S, L>::Zero();
+  data.a[0] = {LaneVector3<S, L>::Zero(), LaneVector3<S, L>::Constant(-model.gravity)};  // a_0 = −a_g
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<S>& j = model.joints[i];
+    const int lambda = model.parent[i];
+    const Lanes<S, L>* qd = &data.qd[j.idx_v];
+    joint_up_transform_lanes(model, i, &data.q[j.idx_q], data.X_up[i]);
+    if (lambda > 0)
+      data.v[i] = data.X_up[i].apply(data.v[lambda]);                      // v_i = X v_λ + S q̇
+    else
+      data.v[i] = LaneMotion<S, L>::Zero();                                //   (v_0 = 0)
+    add_joint_motion(j, qd, data.v[i]);
+    data.a[i] = data.X_up[i].apply(data.a[lambda]);                        // a_i = X a_λ + S q̈ + v_i × S q̇
+    add_joint_motion(j, &data.qdd[j.idx_v], data.a[i]);
+    data.a[i] += joint_motion_cross(j, data.v[i], qd);
+    const LaneForce<S, L> Iv = model.inertia[i] * data.v[i];
+    data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);      // f_i = I a + v ×* I v (eq. 29)
+  }
+  for (int i = model.nbodies() - 1; i >= 1; --i) {
+    joint_project_lanes(model.joints[i], data.f[i], &data.tau[model.joints[i].idx_v]);  // τ_i = Sᵢᵀ f_i
+    const int lambda = model.parent[i];
+    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);           // f_λ += Xᵀ f_i
+  }
+}
+
+/// A non-finite τ among columns c0 .. c0 + count − 1: std::domain_error naming the state and joint.
+template <class S>
+void check_finite_columns(const Model<S>& model, const MatrixRef<S>& tau, Eigen::Index c0, Eigen::Index count) {
+  if (tau.middleCols(c0, count).allFinite()) return;
+  for (Eigen::Index c = c0; c < c0 + count; ++c) {
+    try {
+      check_finite_result(model, "inverse dynamics: the joint force", tau.col(c));
+    } catch (const std::domain_error& e) {
+      throw std::domain_error(at_state(c, e.what()));
+    }
+  }
+}
+
+}  // namespace detail
+
+/// τ(:, k) = ID(q(:, k), q̇(:, k), q̈(:, k)) for every column k: q is nq × N, q̇ and q̈ nv × N, τ
+/// nv × N (sized by the caller; N may be 0). The same numbers as rnea for each state. Errors as
+/// rnea's, their message starting with "state k: ". No allocation.
+template <class S, int L>
+void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixRef<S>& q, const ConstMatrixRef<S>& qd,
+                const ConstMatrixRef<S>& qdd, MatrixRef<S> tau) {
+  detail::check_length("q (rows)", q.rows(), model.nq);
+  detail::check_length("velocity (rows)", qd.rows(), model.nv);
+  detail::check_length("acceleration (rows)", qdd.rows(), model.nv);
+  detail::check_length("tau (rows)", tau.rows(), model.nv);
+  const Eigen::Index n = q.cols();
+  for (const auto& [what, cols] : {std::pair<const char*, Eigen::Index>{"velocity", qd.cols()},
+                                   {"acceleration", qdd.cols()}, {"tau", tau.cols()}})
+    if (cols != n)
+      throw std::invalid_argument(std::string(what) + " has " + std::to_string(cols) + " columns (states); q has " +
+                                  std::to_string(n));
+  if (static_cast<int>(data.X_up.size()) != model.nbodies() || static_cast<int>(data.q.size()) != model.nq)
+    throw std::invalid_argument("the batch workspace was made for another model");
+
+  if (model.has_coupled_joints) {
+    // A coupled mimic joint reads and accumulates its master's coordinate (joint_kernels.hpp,
+    // body_up_transform … store_joint_force); such models take the one-state RNEA per state.
+    for (Eigen::Index c = 0; c < n; ++c) {
+      try {
+        tau.col(c) = rnea(model, data.single, q.col(c), qd.col(c), qdd.col(c));
+      } catch (const std::domain_error& e) {
+        throw std::domain_error(detail::at_state(c, e.what()));
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(detail::at_state(c, e.what()));
+      }
+    }
+    return;
+  }
+  for (Eigen::Index c0 = 0; c0 < n; c0 += L) {
+    const int count = static_cast<int>(std::min<Eigen::Index>(L, n - c0));
+    detail::gather_lanes(model, data, q, qd, qdd, c0, count);
+    detail::rnea_lanes(model, data);
+    for (int k = 0; k < model.nv; ++k)
+      for (int l = 0; l < count; ++l) tau(k, c0 + l) = data.tau[k][l];
+    detail::check_finite_columns(model, tau, c0, count);
+  }
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,57 @@
+// The workspace of the batched algorithms (rnea_batch.hpp): Data's per-body buffers, each entry
+// holding L states side by side (spatial/lanes.hpp), plus one-state Data for the models the
+// batched kernels leave to the one-state algorithms. Allocated once from a Model; a call never
+// allocates. Like Data, it belongs to one thread.
+#pragma once
+
+#include <vector>
+
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/lanes.hpp"
+
+namespace spatial_dynamics {
+
+/// Bytes of the widest vector register the compiler was allowed to use.
+#if defined(__AVX512F__)
+constexpr int kSimdBytes = 64;
+#elif defined(__AVX__)
+constexpr int kSimdBytes = 32;
+#else
+constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
+#endif
+
+/// States evaluated together by default: as many as fill one vector register (2 doubles with
+/// SSE2, 4 with AVX). More lanes than a register holds measured slower: the lanes no longer fit in
+/// the registers.
+template <class S>
+constexpr int kDefaultBatchLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
+
+template <class S, int L = kDefaultBatchLanes<S>>
+struct BatchData {
+  static_assert(L >= 1, "a batch has at least one lane");
+  static constexpr int lanes = L;
+
+  // Per body, L states each.
+  std::vector<LaneTransform<S, L>> X_up;  // ^iX_λ(i)
+  std::vector<LaneMotion<S, L>> v, a;     // body velocities and accelerations
+  std::vector<LaneForce<S, L>> f;         // body forces
+
+  // The block's inputs and result, per coordinate.
+  std::vector<Lanes<S, L>> q, qd, qdd, tau;
+
+  Data<S> single;  // one state at a time (models with coupled mimic joints)
+
+  explicit BatchData(const Model<S>& model)
+      : X_up(model.nbodies()),
+        v(model.nbodies(), LaneMotion<S, L>::Zero()),
+        a(model.nbodies(), LaneMotion<S, L>::Zero()),
+        f(model.nbodies()),
+        q(model.nq, Lanes<S, L>::Zero()),
+        qd(model.nv, Lanes<S, L>::Zero()),
+        qdd(model.nv, Lanes<S, L>::Zero()),
+        tau(model.nv, Lanes<S, L>::Zero()),
+        single(model) {}
+};
+
+}  // namespace spatial_dynamics

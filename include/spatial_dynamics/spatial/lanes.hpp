@@ -1,0 +1,240 @@
+// The spatial algebra over L lanes: L independent states side by side, each quantity stored as
+// a structure of arrays (one fixed-size Eigen array of L scalars per coordinate), so that every
+// operation below is one vector operation across the lanes. Only what the batched algorithms
+// need: 3-vectors, rotations, motion and force vectors, the transform (E, r) applied as in
+// plucker_transform.hpp (eqs. 11–12), the cross products of cross.hpp (eqs. 17–18) and a rigid
+// inertia that is the same in every lane (eq. 25). Each formula is written in the same order as
+// its one-state counterpart, so a lane gives that counterpart's numbers.
+#pragma once
+
+#include <type_traits>
+
+#include <Eigen/Core>
+
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/rigid_inertia.hpp"
+
+// The lane operations are tiny and sit in the inner loops: inlined, the lanes stay in registers
+// instead of travelling through memory as returned structs.
+#if defined(__GNUC__)
+#define SD_LANE_INLINE inline __attribute__((always_inline))
+#else
+#define SD_LANE_INLINE inline
+#endif
+
+namespace spatial_dynamics {
+
+namespace detail {
+
+/// Whether the compiler's vector extension (GCC, Clang) holds L scalars of type S: float or
+/// double, L a power of two. Other scalars (long double, multiprecision) take plain arrays.
+template <class S, int L>
+constexpr bool kLaneVectorExtension =
+#if defined(__GNUC__)
+    (std::is_same<S, double>::value || std::is_same<S, float>::value) && L > 0 && (L & (L - 1)) == 0;
+#else
+    false;
+#endif
+
+template <class S, int L, bool = kLaneVectorExtension<S, L>>
+struct LaneStorage {
+  S v[L];
+};
+#if defined(__GNUC__)
+template <class S, int L>
+struct LaneStorage<S, L, true> {
+  typedef S Vector __attribute__((vector_size(sizeof(S) * L)));  // one SIMD value (or a few, split)
+  Vector v;
+};
+#endif
+
+}  // namespace detail
+
+/// One scalar per lane. With the vector extension each operation below is one vector operation
+/// by construction (the compiler splits it over registers narrower than L lanes); otherwise a
+/// loop over the lanes. Everything is force-inlined, so the lanes stay in registers.
+template <class S, int L>
+struct Lanes : detail::LaneStorage<S, L> {
+  static constexpr bool kVector = detail::kLaneVectorExtension<S, L>;
+
+  SD_LANE_INLINE static Lanes Zero() { return Constant(S(0)); }
+  SD_LANE_INLINE static Lanes Constant(const S& x) {
+    Lanes out;
+    for (int l = 0; l < L; ++l) out.v[l] = x;
+    return out;
+  }
+  SD_LANE_INLINE S operator[](int l) const { return this->v[l]; }
+  SD_LANE_INLINE void set(int l, const S& x) { this->v[l] = x; }
+
+  SD_LANE_INLINE Lanes operator-() const {
+    Lanes out;
+    if constexpr (kVector) {
+      out.v = -this->v;
+    } else {
+      for (int l = 0; l < L; ++l) out.v[l] = -this->v[l];
+    }
+    return out;
+  }
+  SD_LANE_INLINE Lanes& operator+=(const Lanes& o) { return *this = *this + o; }
+  SD_LANE_INLINE Lanes& operator-=(const Lanes& o) { return *this = *this - o; }
+};
+
+#define SD_LANE_BINARY_OPERATOR(op)                                                      \
+  template <class S, int L>                                                              \
+  SD_LANE_INLINE Lanes<S, L> operator op(const Lanes<S, L>& a, const Lanes<S, L>& b) {   \
+    Lanes<S, L> out;                                                                     \
+    if constexpr (Lanes<S, L>::kVector) {                                                \
+      out.v = a.v op b.v;                                                                \
+    } else {                                                                             \
+      for (int l = 0; l < L; ++l) out.v[l] = a.v[l] op b.v[l];                           \
+    }                                                                                    \
+    return out;                                                                          \
+  }                                                                                      \
+  template <class S, int L>                                                              \
+  SD_LANE_INLINE Lanes<S, L> operator op(const Lanes<S, L>& a, const S& b) {             \
+    return a op Lanes<S, L>::Constant(b);                                                \
+  }                                                                                      \
+  template <class S, int L>                                                              \
+  SD_LANE_INLINE Lanes<S, L> operator op(const S& a, const Lanes<S, L>& b) {             \
+    return Lanes<S, L>::Constant(a) op b;                                                \
+  }
+SD_LANE_BINARY_OPERATOR(+)
+SD_LANE_BINARY_OPERATOR(-)
+SD_LANE_BINARY_OPERATOR(*)
+#undef SD_LANE_BINARY_OPERATOR
+
+/// A 3-vector per lane: x, y and z each hold L lanes.
+template <class S, int L>
+struct LaneVector3 {
+  using Lane = Lanes<S, L>;
+  Lane x, y, z;
+
+  SD_LANE_INLINE static LaneVector3 Zero() { return {Lane::Zero(), Lane::Zero(), Lane::Zero()}; }
+  /// The same vector in every lane.
+  SD_LANE_INLINE static LaneVector3 Constant(const Vector3<S>& v) {
+    return {Lane::Constant(v.x()), Lane::Constant(v.y()), Lane::Constant(v.z())};
+  }
+
+  SD_LANE_INLINE Lane& operator[](int k) { return k == 0 ? x : (k == 1 ? y : z); }
+  SD_LANE_INLINE const Lane& operator[](int k) const { return k == 0 ? x : (k == 1 ? y : z); }
+
+  SD_LANE_INLINE LaneVector3 operator+(const LaneVector3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+  SD_LANE_INLINE LaneVector3 operator-(const LaneVector3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+  SD_LANE_INLINE LaneVector3& operator+=(const LaneVector3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+
+  /// a × b, lane by lane.
+  SD_LANE_INLINE LaneVector3 cross(const LaneVector3& b) const {
+    return {y * b.z - z * b.y, z * b.x - x * b.z, x * b.y - y * b.x};
+  }
+};
+
+/// a × b for a vector a that is the same in every lane.
+template <class S, int L>
+SD_LANE_INLINE LaneVector3<S, L> cross(const Vector3<S>& a, const LaneVector3<S, L>& b) {
+  return {a.y() * b.z - a.z() * b.y, a.z() * b.x - a.x() * b.z, a.x() * b.y - a.y() * b.x};
+}
+
+/// k v, k one scalar per lane.
+template <class S, int L>
+SD_LANE_INLINE LaneVector3<S, L> operator*(const Lanes<S, L>& k, const LaneVector3<S, L>& v) {
+  return {k * v.x, k * v.y, k * v.z};
+}
+
+/// M v for a matrix that is the same in every lane.
+template <class S, int L>
+SD_LANE_INLINE LaneVector3<S, L> operator*(const Matrix3<S>& M, const LaneVector3<S, L>& v) {
+  return {M(0, 0) * v.x + M(0, 1) * v.y + M(0, 2) * v.z, M(1, 0) * v.x + M(1, 1) * v.y + M(1, 2) * v.z,
+          M(2, 0) * v.x + M(2, 1) * v.y + M(2, 2) * v.z};
+}
+
+/// A 3×3 matrix per lane, m[row][column].
+template <class S, int L>
+struct LaneMatrix3 {
+  Lanes<S, L> m[3][3];
+
+  SD_LANE_INLINE static LaneMatrix3 Constant(const Matrix3<S>& M) {
+    LaneMatrix3 out;
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) out.m[i][k] = Lanes<S, L>::Constant(M(i, k));
+    return out;
+  }
+  /// E v
+  SD_LANE_INLINE LaneVector3<S, L> operator*(const LaneVector3<S, L>& v) const {
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+  }
+  /// Eᵀ v
+  SD_LANE_INLINE LaneVector3<S, L> transposeTimes(const LaneVector3<S, L>& v) const {
+    return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+            m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
+  }
+};
+
+/// A motion vector (ω; v_O) per lane.
+template <class S, int L>
+struct LaneMotion {
+  LaneVector3<S, L> angular, linear;
+  SD_LANE_INLINE static LaneMotion Zero() { return {LaneVector3<S, L>::Zero(), LaneVector3<S, L>::Zero()}; }
+  SD_LANE_INLINE LaneMotion operator+(const LaneMotion& o) const { return {angular + o.angular, linear + o.linear}; }
+  SD_LANE_INLINE LaneMotion& operator+=(const LaneMotion& o) {
+    angular += o.angular;
+    linear += o.linear;
+    return *this;
+  }
+};
+
+/// A force vector (n_O; f) per lane.
+template <class S, int L>
+struct LaneForce {
+  LaneVector3<S, L> angular, linear;
+  SD_LANE_INLINE LaneForce operator+(const LaneForce& o) const { return {angular + o.angular, linear + o.linear}; }
+  SD_LANE_INLINE LaneForce& operator+=(const LaneForce& o) {
+    angular += o.angular;
+    linear += o.linear;
+    return *this;
+  }
+};
+
+/// ^BX_A per lane, stored as (E, r) like PluckerTransform.
+template <class S, int L>
+struct LaneTransform {
+  LaneMatrix3<S, L> E;
+  LaneVector3<S, L> r;
+
+  /// X m = (E ω ; E (v − r×ω))   (eq. 11)
+  SD_LANE_INLINE LaneMotion<S, L> apply(const LaneMotion<S, L>& m) const {
+    return {E * m.angular, E * (m.linear - r.cross(m.angular))};
+  }
+  /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)   (eq. 12 inverted)
+  SD_LANE_INLINE LaneForce<S, L> applyInverse(const LaneForce<S, L>& f) const {
+    const LaneVector3<S, L> lin = E.transposeTimes(f.linear);
+    return {E.transposeTimes(f.angular) + r.cross(lin), lin};
+  }
+};
+
+/// v × m   (eq. 17)
+template <class S, int L>
+SD_LANE_INLINE LaneMotion<S, L> cross(const LaneMotion<S, L>& v, const LaneMotion<S, L>& m) {
+  return {v.angular.cross(m.angular), v.angular.cross(m.linear) + v.linear.cross(m.angular)};
+}
+
+/// v ×* f   (eq. 18)
+template <class S, int L>
+SD_LANE_INLINE LaneForce<S, L> cross(const LaneMotion<S, L>& v, const LaneForce<S, L>& f) {
+  return {v.angular.cross(f.angular) + v.linear.cross(f.linear), v.angular.cross(f.linear)};
+}
+
+/// I v = (Ī_O ω + h×v ; m v − h×ω) for an inertia that is the same in every lane   (eq. 25)
+template <class S, int L>
+SD_LANE_INLINE LaneForce<S, L> operator*(const RigidInertia<S>& I, const LaneMotion<S, L>& v) {
+  const LaneVector3<S, L> h_cross_w = cross(I.first_moment, v.angular);
+  return {I.rotational_inertia * v.angular + cross(I.first_moment, v.linear),
+          {I.mass * v.linear.x - h_cross_w.x, I.mass * v.linear.y - h_cross_w.y, I.mass * v.linear.z - h_cross_w.z}};
+}
+
+}  // namespace spatial_dynamics
