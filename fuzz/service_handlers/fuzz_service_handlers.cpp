@@ -150,6 +150,20 @@ class RequestDecoder {
     r.name = joint_names();
     r.position = values();
   }
+  void fill(sd::InverseDynamicsTrajectory::Request& r) {
+    r.trajectory.joint_names = joint_names();
+    r.trajectory.points.resize(in_.ConsumeIntegralInRange<std::size_t>(0, 6));
+    if (in_.ConsumeBool() && in_.ConsumeBool()) r.trajectory.points.resize(in_.ConsumeIntegralInRange<std::size_t>(0, 600));
+    double t = value();
+    for (auto& p : r.trajectory.points) {
+      p.positions = values();
+      if (in_.ConsumeBool()) p.velocities = values();
+      if (in_.ConsumeBool()) p.accelerations = values();
+      // Mostly increasing times; sometimes repeated, decreasing or any value (the time is checked).
+      t = in_.ConsumeBool() ? t + in_.ConsumeFloatingPointInRange<double>(0.0, 0.1) : value();
+      p.time_from_start = ros::Duration(std::isfinite(t) && std::abs(t) < 1e9 ? t : 0.0);
+    }
+  }
   void fill(sensor_msgs::JointState& m) { m.name = joint_names(); m.position = values(); m.velocity = values(); }
 
   void set_names(const sd::ServedScene& scene) {
@@ -178,6 +192,11 @@ void require_finite(const Vector& values, const char* what) {
 void check_response(const sd::InverseDynamics::Response& r) { require_finite(r.effort, "non-finite effort"); }
 void check_response(const sd::ForwardDynamics::Response& r) { require_finite(r.acceleration, "non-finite acceleration"); }
 void check_response(const sd::MassMatrix::Response& r) { require_finite(r.mass_matrix, "non-finite mass matrix"); }
+void check_response(const sd::InverseDynamicsTrajectory::Response& r) {
+  for (const auto& p : r.points) require_finite(p.effort, "non-finite trajectory effort");
+  require_finite(r.peak_effort, "non-finite peak effort");
+  if (r.first_violation.size() != r.peak_effort.size()) finding("first_violation and peak_effort differ in length");
+}
 void check_response(const sd::TransformWrench::Response& r) {
   const auto& w = r.wrench.wrench;
   require_finite(std::vector<double>{w.force.x, w.force.y, w.force.z, w.torque.x, w.torque.y, w.torque.z},
@@ -211,7 +230,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   FuzzedDataProvider bytes(data + 1, size - 1);
   RequestDecoder decoder(bytes, *scene.model);
   decoder.set_names(scene);
-  switch (selector % 5) {
+  switch (selector % 6) {
     case 0:
       run<sd::InverseDynamics::Request, sd::InverseDynamics::Response>(
           decoder, [&](auto& req, auto& res) { sd::compute_inverse_dynamics(scene, ws, req, res); });
@@ -227,6 +246,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     case 3:
       run<sd::TransformWrench::Request, sd::TransformWrench::Response>(
           decoder, [&](auto& req, auto& res) { sd::compute_transform_wrench(scene, ws, *fx.frames, req, res); });
+      break;
+    case 4:
+      run<sd::InverseDynamicsTrajectory::Request, sd::InverseDynamicsTrajectory::Response>(
+          decoder, [&](auto& req, auto& res) { sd::compute_inverse_dynamics_trajectory(scene, ws, req, res); });
       break;
     default: {  // a joint_states message from a misbehaving publisher
       sensor_msgs::JointState msg;
