@@ -38,7 +38,7 @@ done
 
 bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dependencies failed"
 build_dir=build-fuzz
-bash scripts/build.sh -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DSPATIAL_DYNAMICS_FUZZ=ON \
+bash scripts/build.sh -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DSPATIAL_DYNAMICS_FUZZ=ON -DSPATIAL_DYNAMICS_BENCHMARK=OFF \
   -DSPATIAL_DYNAMICS_SANITIZE=address,undefined -DCATKIN_ENABLE_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" "${targets[@]/#/fuzz_}" || fail "building the fuzz targets failed"
 

@@ -31,7 +31,7 @@ case "$kind" in
 esac
 
 bash scripts/install_dependencies.sh || fail "installing dependencies failed"
-bash scripts/build.sh -B "$build_dir" -DSPATIAL_DYNAMICS_SANITIZE="$sanitizers" \
+bash scripts/build.sh -B "$build_dir" -DSPATIAL_DYNAMICS_SANITIZE="$sanitizers" -DSPATIAL_DYNAMICS_BENCHMARK=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimisation -g" all tests ||
   fail "the $kind-sanitized build failed"
 
@@ -40,6 +40,7 @@ suppressions="$PWD/test/sanitizers"
 rm -rf "$reports"
 mkdir -p "$reports"
 # log_path: one file per process that found something (tests and the node alike).
+export LSAN_OPTIONS="suppressions=$suppressions/lsan.supp:print_suppressions=0"
 export ASAN_OPTIONS="log_path=$reports/asan:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:detect_invalid_pointer_pairs=0"
 export UBSAN_OPTIONS="log_path=$reports/ubsan:print_stacktrace=1:halt_on_error=1"
 export TSAN_OPTIONS="log_path=$reports/tsan:suppressions=$suppressions/tsan.supp:print_suppressions=0"

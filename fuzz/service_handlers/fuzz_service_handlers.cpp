@@ -179,7 +179,7 @@ class RequestDecoder {
 };
 
 void finding(const char* what) {
-  std::fprintf(stderr, "finding: %s\n", what);
+  std::fprintf(stderr, "FINDING: %s\n", what);
   std::abort();
 }
 
@@ -219,6 +219,13 @@ void run(RequestDecoder& decoder, Handler&& handler) {
 }
 
 }  // namespace
+
+// The scenes are built once, before the first input, so that their set-up never counts against an
+// input's time limit.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  fixture();
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
