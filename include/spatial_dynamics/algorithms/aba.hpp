@@ -68,11 +68,9 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
       data.D_inv[i](0, 0) = S(1) / D;
       data.u[i][0] = u;
       if (lambda > 0) {
-        const Vector6<S> U_over_D = U / D;
-        for (int c = 0; c < 6; ++c)                                              // Iᵃ = Iᴬ − U D⁻¹ Uᵀ, one
-          for (int k = c; k < 6; ++k) IA(c, k) = IA(k, c) = IA(k, c) - U[k] * U_over_D[c];  // triangle, mirrored
+        IA.noalias() -= U * (U.transpose() / D);                                 // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
         const Vector6<S> pa = pA + IA * data.c[i].toVector() + U * (u / D);     // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
-        data.IA[lambda] += data.X_up[i].applyInverse(data.IA[i]);                // Iᴬ_λ += Xᵀ Iᵃ X
+        data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);               // Iᴬ_λ += Xᵀ Iᵃ X
         data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
       }
     } else {  // free joint (always a child of the fixed base): S = 1, U = D = Iᴬ

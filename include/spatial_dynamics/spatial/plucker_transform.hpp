@@ -82,46 +82,41 @@ struct PluckerTransform {
       }
     return out;
   }
-  /// R Ī Rᵀ for a symmetric Ī: the lower triangle computed, mirrored, so the result is exactly symmetric.
+  /// R Ī Rᵀ for a symmetric Ī, its upper triangle copied from the lower so that it is exactly symmetric.
   static Matrix3<S> rotate_symmetric(const Matrix3<S>& R, const Matrix3<S>& I) {
-    const Matrix3<S> RI = R * I;
-    Matrix3<S> out;
-    for (int c = 0; c < 3; ++c)
-      for (int k = c; k < 3; ++k) {
-        const S v = RI.row(k).dot(R.row(c));
-        out(k, c) = v;
-        out(c, k) = v;
-      }
+    Matrix3<S> out = R * I * R.transpose();
+    out(0, 1) = out(1, 0);
+    out(0, 2) = out(2, 0);
+    out(1, 2) = out(2, 1);
     return out;
   }
 
   /// Xᵀ Iᴬ X for an articulated inertia [A B; Bᵀ C] given in B coordinates, with
   /// A' = Eᵀ A E etc.:  [A' − B'r× + r×B'ᵀ − r×C'r×,  B' + r×C' ;  B'ᵀ − C'r×,  C'].
-  /// Row k of B'r× is b'_k × r and column c of r×C' is r × c'_c; the symmetric blocks are
-  /// computed as one triangle and mirrored.
+  /// Row k of B'r× is b'_k × r, column c of r×C' is r × c'_c, and row k of r×C'r× is
+  /// (row k of r×C') × r: cross products instead of products with skew matrices.
   ArticulatedInertia<S> applyInverse(const ArticulatedInertia<S>& Ia) const {
+    ArticulatedInertia<S> out;  // zero
+    applyInverseAdd(Ia, out);
+    return out;
+  }
+  /// out += Xᵀ Iᴬ X: the ABA's inward accumulation without a temporary 6×6 matrix.
+  void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
     const Matrix3<S> Et = E.transpose();
-    const Matrix3<S> A = rotate_symmetric(Et, Ia.matrix.template topLeftCorner<3, 3>());
+    const Matrix3<S> A = Et * Ia.matrix.template topLeftCorner<3, 3>() * E;
     const Matrix3<S> B = Et * Ia.matrix.template topRightCorner<3, 3>() * E;
-    const Matrix3<S> C = rotate_symmetric(Et, Ia.matrix.template bottomRightCorner<3, 3>());
-    Matrix3<S> Brx, rxC;
+    const Matrix3<S> C = Et * Ia.matrix.template bottomRightCorner<3, 3>() * E;
+    Matrix3<S> Brx, rxC, rxCrx;
     for (int k = 0; k < 3; ++k) {
       Brx.row(k) = Vector3<S>(B.row(k).transpose()).cross(r).transpose();
       rxC.col(k) = r.cross(Vector3<S>(C.col(k)));
     }
-    ArticulatedInertia<S> out;
-    for (int k = 0; k < 3; ++k) {
-      const Vector3<S> rxCrx_k = Vector3<S>(rxC.row(k).transpose()).cross(r);  // row k of r×C'r×
-      for (int c = 0; c <= k; ++c) {
-        const S v = A(k, c) - Brx(k, c) - Brx(c, k) - rxCrx_k[c];
-        out.matrix(k, c) = v;
-        out.matrix(c, k) = v;
-      }
-    }
-    out.matrix.template topRightCorner<3, 3>() = B + rxC;
-    out.matrix.template bottomLeftCorner<3, 3>() = (B + rxC).transpose();
-    out.matrix.template bottomRightCorner<3, 3>() = C;
-    return out;
+    for (int k = 0; k < 3; ++k) rxCrx.row(k) = Vector3<S>(rxC.row(k).transpose()).cross(r).transpose();
+    const Matrix3<S> B_plus_rxC = B + rxC;
+    out.matrix.template topLeftCorner<3, 3>() += A - Brx - Brx.transpose() - rxCrx;
+    out.matrix.template topRightCorner<3, 3>() += B_plus_rxC;
+    out.matrix.template bottomLeftCorner<3, 3>() += B_plus_rxC.transpose();
+    out.matrix.template bottomRightCorner<3, 3>() += C;
   }
 
   // ---- composition and inverse ----------------------------------------------------------
