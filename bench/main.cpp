@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <time.h>
+
 #include "allocation_counter.hpp"
 #include "benchmark_types.hpp"
 #include "reference.hpp"
@@ -176,15 +178,24 @@ void calibrate(Timing& t, int pool, const Settings& settings) {
   t.calls = std::max(settings.min_calls, std::min<long>(settings.calls, static_cast<long>(settings.repeat_seconds / per_call)));
 }
 
-/// One repeat: `calls` calls cycling through the state pool; allocations counted.
+/// CPU time of the calling thread, in ns: time while the thread is descheduled (a shared machine
+/// running other work) is not counted, as wall-clock time would count it.
+double thread_cpu_ns() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e9 * static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec);
+}
+
+/// One repeat: `calls` calls cycling through the state pool, timed in thread CPU time;
+/// allocations counted.
 void time_repeat(Timing& t, int pool) {
   for (long c = 0; c < std::min<long>(10, t.calls / 10); ++c) t.adapter->run(t.algorithm, static_cast<int>(c % pool));  // caches back
   const long before = allocation_count();
-  const auto start = Clock::now();
+  const double start = thread_cpu_ns();
   for (long c = 0; c < t.calls; ++c) t.adapter->run(t.algorithm, static_cast<int>(c % pool));
-  const auto stop = Clock::now();
+  const double stop = thread_cpu_ns();
   t.allocations += allocation_count() - before;
-  t.ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / t.calls);
+  t.ns.push_back((stop - start) / t.calls);
 }
 
 /// Every row of a model timed together: warm-up, then `repeats` rounds, each timing one repeat of
@@ -499,8 +510,9 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
     << "Errors: norm-wise relative error ‖x − x_ref‖/‖x_ref‖ (Frobenius for M; for FK the stacked rotation matrices and "
        "positions of every moving body) against spatial_dynamics in float128 on the same model (converted exactly) and "
        "inputs; max and median over the random states (q ∈ U(−π, π), q̇, q̈ ∈ U(−1, 1), forward dynamics fed τ = RNEA "
-       "in double). Float rows get the same double inputs rounded to float. Times: median (min–max) of "
-    << settings.repeats << " repeats of up to " << settings.calls << " calls over the state pool after a warm-up; fewer calls "
+       "in double). Float rows get the same double inputs rounded to float. Times (thread CPU time, so that time the "
+       "thread spends descheduled on a shared machine does not count): median (min–max) of "
+    << settings.repeats << " interleaved repeats (each round times one repeat of every row of the model) of up to " << settings.calls << " calls over the state pool after a warm-up; fewer calls "
     << "per repeat when one repeat would take more than " << settings.repeat_seconds << " s (the calls column). "
     << "Errors over " << settings.states << " states, except that a row whose calls have taken " << settings.error_seconds
     << " s stops taking states, and the float128 mass matrices get " << settings.mass_matrix_seconds
