@@ -71,12 +71,14 @@ struct PluckerTransform {
   /// Ī + σ(h×r× + r×h×) − m r×r× = Ī + σ(r hᵀ + h rᵀ − 2(h·r)1) − m(r rᵀ − (r·r)1), symmetric.
   static Matrix3<S> shift_rotational_inertia(const Matrix3<S>& I, const Vector3<S>& h, const S& m, const Vector3<S>& r,
                                              const S& sigma) {
+    // m r is formed first, so a massless body far away gives 0, not 0 · ∞.
     const Vector3<S> sh = sigma * h;
-    const S diagonal = m * r.dot(r) - S(2) * sh.dot(r);
+    const Vector3<S> mr = m * r;
+    const S diagonal = mr.dot(r) - S(2) * sh.dot(r);
     Matrix3<S> out;
     for (int c = 0; c < 3; ++c)
       for (int k = c; k < 3; ++k) {
-        const S v = I(k, c) + r[k] * sh[c] + sh[k] * r[c] - m * r[k] * r[c] + (k == c ? diagonal : S(0));
+        const S v = I(k, c) + r[k] * sh[c] + sh[k] * r[c] - mr[k] * r[c] + (k == c ? diagonal : S(0));
         out(k, c) = v;
         out(c, k) = v;
       }
