@@ -8,25 +8,65 @@
 #include <kdl/treefksolverpos_recursive.hpp>
 #include <kdl/treeidsolver_recursive_newton_euler.hpp>
 #include <kdl_parser/kdl_parser.hpp>
+#include <set>
 
 namespace bench {
 namespace {
+
+using SegmentIt = KDL::SegmentMap::const_iterator;
+
+/// Inertia of the segment behind `it` and of everything below it, in the segment's tip frame.
+/// Only called on subtrees without movable joints, whose poses do not depend on q.
+KDL::RigidBodyInertia subtree_inertia(SegmentIt it) {
+  KDL::RigidBodyInertia I = GetTreeElementSegment(it->second).getInertia();
+  for (SegmentIt child : GetTreeElementChildren(it->second))
+    I = I + GetTreeElementSegment(child->second).pose(0.0) * subtree_inertia(child);
+  return I;
+}
+
+/// Whether the tree's movable joints lie on one root-to-tip path; if so, `chain` is that path
+/// (getChain(root, deepest movable segment)) with the inertia of every fixed side branch (and of
+/// the fixed links beyond the tip) folded into the path segment it hangs from, so the chain has
+/// the tree's dynamics. The fixed links hanging from the root carry no dynamics with a fixed base.
+bool serial_chain(const KDL::Tree& tree, KDL::Chain& chain) {
+  const KDL::SegmentMap& segments = tree.getSegments();
+  const SegmentIt root = tree.getRootSegment();
+  auto movable = [](SegmentIt it) { return GetTreeElementSegment(it->second).getJoint().getType() != KDL::Joint::None; };
+  auto movable_depth = [&](SegmentIt it) {
+    int d = 0;
+    for (; it != root; it = GetTreeElementParent(it->second)) d += movable(it);
+    return d;
+  };
+  SegmentIt tip = root;
+  int tip_depth = 0, count = 0;
+  for (SegmentIt it = segments.begin(); it != segments.end(); ++it) {
+    if (!movable(it)) continue;
+    ++count;
+    const int d = movable_depth(it);
+    if (d > tip_depth) tip = it, tip_depth = d;
+  }
+  if (tip_depth != count || count == 0) return false;  // some movable joint is off the deepest path
+  std::set<std::string> on_path;
+  for (SegmentIt it = tip; it != root; it = GetTreeElementParent(it->second)) on_path.insert(it->first);
+  KDL::Chain path;
+  if (!tree.getChain(root->first, tip->first, path)) return false;
+  chain = KDL::Chain();
+  for (const KDL::Segment& segment : path.segments) {
+    const SegmentIt it = segments.find(segment.getName());
+    KDL::RigidBodyInertia I = segment.getInertia();
+    for (SegmentIt child : GetTreeElementChildren(it->second))
+      if (!on_path.count(child->first)) I = I + GetTreeElementSegment(child->second).pose(0.0) * subtree_inertia(child);
+    chain.addSegment(KDL::Segment(segment.getName(), segment.getJoint(), segment.getFrameToTip(), I));
+  }
+  return true;
+}
 
 class KdlAdapter : public Adapter {
  public:
   KdlAdapter(const spatial_dynamics::Model<double>& model, KDL::Tree tree)
       : model_(model), tree_(std::move(tree)), gravity_(model.gravity.x(), model.gravity.y(), model.gravity.z()) {
-    const std::string root = tree_.getRootSegment()->first;
-    // A chain when no segment has two children; its tip is the one leaf.
-    std::string tip = root;
-    is_chain_ = true;
-    for (const auto& entry : tree_.getSegments()) {
-      const auto& children = GetTreeElementChildren(entry.second);
-      if (children.size() > 1) is_chain_ = false;
-      if (children.empty()) tip = entry.first;
-    }
+    is_chain_ = serial_chain(tree_, chain_);
     if (is_chain_) {
-      tree_.getChain(root, tip, chain_);
       int index = 0;
       for (const KDL::Segment& segment : chain_.segments)
         if (segment.getJoint().getType() != KDL::Joint::None) kdl_index_[segment.getJoint().getName()] = index++;

@@ -1,5 +1,6 @@
 // Orocos KDL (Debian's liborocos-kdl, kdl_parser): fixed base only (KDL has no free joint).
-// Serial chains use ChainIdSolver_RNE, ChainDynParam, ChainFdSolver_RNE (mass matrix + LDLᵀ)
+// Models whose movable joints form one root-to-tip path (fixed side links allowed, their inertia
+// folded into the path) use ChainIdSolver_RNE, ChainDynParam, ChainFdSolver_RNE (mass matrix + LDLᵀ)
 // and ChainFkSolverPos_recursive; trees use TreeIdSolver_RNE (RNEA, gravity torques) and
 // TreeFkSolverPos_recursive, and have no mass matrix or forward dynamics solver in KDL.
 #pragma once

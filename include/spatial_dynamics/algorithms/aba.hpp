@@ -52,7 +52,7 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
   for (int i = n - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
-    const Matrix6<S>& IA = data.IA[i].matrix;
+    Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place below
     const Vector6<S> pA = data.f[i].toVector();
     if (j.nv == 1) {
       const Vector6<S> U = inertia_times_subspace(j, IA);                       // U = Iᴬ S
@@ -68,9 +68,9 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
       data.D_inv[i](0, 0) = S(1) / D;
       data.u[i][0] = u;
       if (lambda > 0) {
-        ArticulatedInertia<S> Ia(IA - U * (U.transpose() / D));                  // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
-        const Vector6<S> pa = pA + Ia.matrix * data.c[i].toVector() + U * (u / D);  // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
-        data.IA[lambda] += data.X_up[i].applyInverse(Ia);                        // Iᴬ_λ += Xᵀ Iᵃ X
+        IA.noalias() -= U * (U.transpose() / D);                                 // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
+        const Vector6<S> pa = pA + IA * data.c[i].toVector() + U * (u / D);     // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
+        data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);               // Iᴬ_λ += Xᵀ Iᵃ X
         data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
       }
     } else {  // free joint (always a child of the fixed base): S = 1, U = D = Iᴬ

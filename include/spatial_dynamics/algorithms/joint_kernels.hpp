@@ -15,7 +15,7 @@ namespace detail {
 
 /// a · x, reading one component for an axis-aligned joint.
 template <class S>
-inline S along_axis(const Joint<S>& j, const Vector3<S>& x) {
+SD_INLINE S along_axis(const Joint<S>& j, const Vector3<S>& x) {
   switch (j.axis_kind) {
     case AxisKind::X: return x.x();
     case AxisKind::Y: return x.y();
@@ -26,7 +26,7 @@ inline S along_axis(const Joint<S>& j, const Vector3<S>& x) {
 
 /// k · a.
 template <class S>
-inline Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
+SD_INLINE Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
   switch (j.axis_kind) {
     case AxisKind::X: return Vector3<S>(k, S(0), S(0));
     case AxisKind::Y: return Vector3<S>(S(0), k, S(0));
@@ -38,19 +38,45 @@ inline Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
 /// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
 /// for a coordinate rotation about the remaining axis.
 template <class S>
-inline void rotate_rows(Matrix3<S>& E, int m, int n, const S& c, const S& s) {
-  const Vector3<S> rm = E.row(m).transpose();
-  const Vector3<S> rn = E.row(n).transpose();
-  E.row(m) = (c * rm + s * rn).transpose();
-  E.row(n) = (c * rn - s * rm).transpose();
+SD_INLINE void rotate_rows(Matrix3<S>& E, int m, int n, const S& c, const S& s) {
+  for (int k = 0; k < 3; ++k) {
+    const S em = E(m, k), en = E(n, k);
+    E(m, k) = c * em + s * en;
+    E(n, k) = c * en - s * em;
+  }
+}
+
+/// E ← rot(a, θ)ᵀ E column by column, from c = cos θ and s = sin θ (RBDA eq. 2.24, transposed):
+/// each column e becomes c e − s a×e + (1 − c)(a·e) a, without forming the rotation matrix.
+template <class S>
+SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c, const S& s) {
+  for (int k = 0; k < 3; ++k) {
+    const Vector3<S> e = E.col(k);
+    E.col(k) = c * e - s * a.cross(e) + ((S(1) - c) * a.dot(e)) * a;
+  }
 }
 
 }  // namespace detail
 
+/// ^iX_λ(i) of the free joint: q = (x y z qx qy qz qw), the base pose in its parent; X_J = (Rᵀ, p).
+template <class S>
+void free_joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+  const Joint<S>& j = model.joints[i];
+  const PluckerTransform<S>& Xt = model.X_tree[i];
+  const Eigen::Quaternion<S> quat(q[6], q[3], q[4], q[5]);
+  using std::abs;
+  if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
+    throw std::invalid_argument("joint '" + model.joint_names[i] + "': the quaternion (q[" + std::to_string(j.idx_q + 3) +
+                                ".." + std::to_string(j.idx_q + 6) + "]) is not of unit norm");
+  const Vector3<S> p(q[0], q[1], q[2]);
+  X.E = quat.toRotationMatrix().transpose() * Xt.E;
+  X.r = Xt.r + Xt.E.transpose() * p;
+}
+
 /// ^iX_λ(i) = X_J(q_i) X_tree(i)   (RBDA Table 4.1 joint models; eq. 4.x composition).
 /// `q` points at the joint's first configuration coordinate.
 template <class S>
-inline void joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
   using std::cos;
   using std::sin;
   const Joint<S>& j = model.joints[i];
@@ -64,7 +90,7 @@ inline void joint_up_transform(const Model<S>& model, int i, const S* q, Plucker
         case AxisKind::X: detail::rotate_rows(X.E, 1, 2, c, s); break;
         case AxisKind::Y: detail::rotate_rows(X.E, 2, 0, c, s); break;
         case AxisKind::Z: detail::rotate_rows(X.E, 0, 1, c, s); break;
-        default: X.E = coordinate_rotation(j.axis, q[0]) * Xt.E; break;
+        default: detail::rotate_about_axis(X.E, j.axis, c, s); break;
       }
       return;
     }
@@ -72,32 +98,20 @@ inline void joint_up_transform(const Model<S>& model, int i, const S* q, Plucker
       X.E = Xt.E;
       X.r = Xt.r + Xt.E.transpose() * detail::scaled_axis(j, q[0]);
       return;
-    case JointType::Free: {
-      // q = (x y z qx qy qz qw): the base pose in its parent; X_J = (Rᵀ, p).
-      const Eigen::Quaternion<S> quat(q[6], q[3], q[4], q[5]);
-      using std::abs;
-      if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
-        throw std::invalid_argument("joint '" + model.joint_names[i] +
-                                    "': the quaternion (q[" + std::to_string(j.idx_q + 3) + ".." +
-                                    std::to_string(j.idx_q + 6) + "]) is not of unit norm");
-      const Vector3<S> p(q[0], q[1], q[2]);
-      X.E = quat.toRotationMatrix().transpose() * Xt.E;
-      X.r = Xt.r + Xt.E.transpose() * p;
-      return;
-    }
+    case JointType::Free: free_joint_up_transform(model, i, q, X); return;
   }
 }
 
 /// S q̇ for a 1-DoF joint with velocity (or acceleration) v.
 template <class S>
-inline MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
+SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
   if (j.type == JointType::Revolute) return {detail::scaled_axis(j, v), Vector3<S>::Zero()};
   return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
 }
 
 /// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.
 template <class S>
-inline MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {
+SD_INLINE MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {
   if (j.type == JointType::Free) return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
   return one_dof_motion(j, qd[0]);
 }
@@ -115,7 +129,7 @@ inline MotionVector<S> joint_subspace_column(const Joint<S>& j, int k) {
 
 /// Sᵀ f written to out[0 .. nv).
 template <class S>
-inline void joint_project(const Joint<S>& j, const ForceVector<S>& f, S* out) {
+SD_INLINE void joint_project(const Joint<S>& j, const ForceVector<S>& f, S* out) {
   switch (j.type) {
     case JointType::Revolute: out[0] = detail::along_axis(j, f.angular); return;
     case JointType::Prismatic: out[0] = detail::along_axis(j, f.linear); return;
@@ -130,7 +144,7 @@ inline void joint_project(const Joint<S>& j, const ForceVector<S>& f, S* out) {
 
 /// Sᵀ x for a 1-DoF joint and a force-like 6-vector x (angular part first).
 template <class S>
-inline S joint_project(const Joint<S>& j, const Vector6<S>& x) {
+SD_INLINE S joint_project(const Joint<S>& j, const Vector6<S>& x) {
   return j.type == JointType::Revolute ? detail::along_axis<S>(j, x.template head<3>())
                                        : detail::along_axis<S>(j, x.template tail<3>());
 }
@@ -151,7 +165,7 @@ inline Vector6<S> inertia_times_subspace(const Joint<S>& j, const Matrix6<S>& I)
 
 /// ^iX_λ(i) from the whole configuration vector q.
 template <class S>
-inline void body_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+SD_INLINE void body_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
   const Joint<S>& j = model.joints[i];
   if (j.coupled) {
     const S qi = j.mimic.multiplier * q[j.idx_q] + j.mimic.offset;  // q = k q_master + offset
@@ -163,7 +177,7 @@ inline void body_up_transform(const Model<S>& model, int i, const S* q, PluckerT
 
 /// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
 template <class S>
-inline MotionVector<S> body_joint_motion(const Joint<S>& j, const S* qd) {
+SD_INLINE MotionVector<S> body_joint_motion(const Joint<S>& j, const S* qd) {
   if (j.coupled) return one_dof_motion(j, S(j.mimic.multiplier * qd[j.idx_v]));  // q̇ = k q̇_master
   return joint_motion(j, qd + j.idx_v);
 }
@@ -172,7 +186,7 @@ inline MotionVector<S> body_joint_motion(const Joint<S>& j, const S* qd) {
 /// first) τ += k Sᵀ f instead, k the coupling multiplier (1 for a joint of its own): by virtual
 /// power a coupled joint's force acts on its master's coordinate scaled by k.
 template <class S>
-inline void store_joint_force(const Joint<S>& j, const ForceVector<S>& f, S* tau, bool accumulate) {
+SD_INLINE void store_joint_force(const Joint<S>& j, const ForceVector<S>& f, S* tau, bool accumulate) {
   if (!accumulate) {
     joint_project(j, f, tau + j.idx_v);
     return;
@@ -185,7 +199,7 @@ inline void store_joint_force(const Joint<S>& j, const ForceVector<S>& f, S* tau
 
 /// The coupling multiplier of a joint's coordinates (1 for a joint of its own).
 template <class S>
-inline S coupling_multiplier(const Joint<S>& j) {
+SD_INLINE S coupling_multiplier(const Joint<S>& j) {
   return j.coupled ? j.mimic.multiplier : S(1);
 }
 

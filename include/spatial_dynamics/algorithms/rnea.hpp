@@ -44,6 +44,27 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   return data.tau;
 }
 
+/// RNEA with q̇ = q̈ = 0: every v_i and c_i vanish, so a_i = ^iX_λ a_λ and f_i = I_i a_i
+/// (RBDA Table 5.1 with the velocity terms dropped).
+template <class S>
+const VectorX<S>& gravity_rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+  check_length("q", q.size(), model.nq);
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
+  for (int i = 1; i < model.nbodies(); ++i) {
+    body_up_transform(model, i, q.data(), data.X_up[i]);
+    data.a[i] = data.X_up[i].apply(data.a[model.parent[i]]);                       // a_i = X a_λ
+    data.f[i] = model.inertia[i] * data.a[i];                                      // f_i = I a_i
+  }
+  const bool accumulate = model.has_coupled_joints;
+  if (accumulate) data.tau.setZero();
+  for (int i = model.nbodies() - 1; i >= 1; --i) {
+    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
+    const int lambda = model.parent[i];
+    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
+  }
+  return data.tau;
+}
+
 }  // namespace detail
 
 /// Joint forces τ that produce accelerations q̈ at (q, q̇) under gravity. Result in data.tau;
@@ -70,7 +91,10 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
 /// Gravity torques g(q) = ID(q, 0, 0).
 template <class S>
 const VectorX<S>& gravity_torques(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
-  return rnea(model, data, q, data.zero_v, data.zero_v);
+  detail::gravity_rnea_impl(model, data, q);
+  for (int i = 1; i < model.nbodies(); ++i) data.v[i] = MotionVector<S>::Zero();  // as rnea leaves them
+  detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
+  return data.tau;
 }
 
 /// Nonlinear effects C(q, q̇) q̇ + g(q) = ID(q, q̇, 0).

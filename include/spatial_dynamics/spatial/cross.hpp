@@ -9,13 +9,13 @@ namespace spatial_dynamics {
 
 /// v × m = (ω×ω_m ; ω×v_m + v×ω_m)   (eq. 17)
 template <class S>
-MotionVector<S> cross(const MotionVector<S>& v, const MotionVector<S>& m) {
+SD_INLINE MotionVector<S> cross(const MotionVector<S>& v, const MotionVector<S>& m) {
   return {v.angular.cross(m.angular), v.angular.cross(m.linear) + v.linear.cross(m.angular)};
 }
 
 /// v ×* f = (ω×n + v×f ; ω×f)   (eq. 18)
 template <class S>
-ForceVector<S> cross(const MotionVector<S>& v, const ForceVector<S>& f) {
+SD_INLINE ForceVector<S> cross(const MotionVector<S>& v, const ForceVector<S>& f) {
   return {v.angular.cross(f.angular) + v.linear.cross(f.linear), v.angular.cross(f.linear)};
 }
 

@@ -4,6 +4,15 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+// The small spatial operations below are called once or twice per body on the algorithms' hot
+// paths; GCC's inlining budget runs out inside the large algorithm bodies, and an out-of-line
+// call passes each 6-vector through memory. SD_INLINE forces them inline.
+#if defined(__GNUC__)
+#define SD_INLINE inline __attribute__((always_inline))
+#else
+#define SD_INLINE inline
+#endif
+
 namespace spatial_dynamics {
 
 template <class S> using Vector3 = Eigen::Matrix<S, 3, 1>;

@@ -30,12 +30,12 @@ struct ForceVector {
     return {angular.template cast<T>(), linear.template cast<T>()};
   }
 
-  ForceVector& operator+=(const ForceVector& o) { angular += o.angular; linear += o.linear; return *this; }
-  ForceVector& operator-=(const ForceVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
-  ForceVector operator+(const ForceVector& o) const { return {angular + o.angular, linear + o.linear}; }
-  ForceVector operator-(const ForceVector& o) const { return {angular - o.angular, linear - o.linear}; }
-  ForceVector operator-() const { return {-angular, -linear}; }
-  ForceVector operator*(const S& k) const { return {angular * k, linear * k}; }
+  SD_INLINE ForceVector& operator+=(const ForceVector& o) { angular += o.angular; linear += o.linear; return *this; }
+  SD_INLINE ForceVector& operator-=(const ForceVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
+  SD_INLINE ForceVector operator+(const ForceVector& o) const { return {angular + o.angular, linear + o.linear}; }
+  SD_INLINE ForceVector operator-(const ForceVector& o) const { return {angular - o.angular, linear - o.linear}; }
+  SD_INLINE ForceVector operator-() const { return {-angular, -linear}; }
+  SD_INLINE ForceVector operator*(const S& k) const { return {angular * k, linear * k}; }
 };
 
 template <class S>
@@ -44,11 +44,11 @@ ForceVector<S> operator*(const S& k, const ForceVector<S>& f) { return f * k; }
 /// Scalar product m · f = ω·n_O + v_O·f: the power delivered by f on a body moving with m
 /// (seed text, eq. 7). Defined only between a motion and a force.
 template <class S>
-S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
+SD_INLINE S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
   return m.angular.dot(f.angular) + m.linear.dot(f.linear);
 }
 template <class S>
-S dot(const ForceVector<S>& f, const MotionVector<S>& m) {
+SD_INLINE S dot(const ForceVector<S>& f, const MotionVector<S>& m) {
   return dot(m, f);
 }
 

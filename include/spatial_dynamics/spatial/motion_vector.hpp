@@ -30,12 +30,12 @@ struct MotionVector {
     return {angular.template cast<T>(), linear.template cast<T>()};
   }
 
-  MotionVector& operator+=(const MotionVector& o) { angular += o.angular; linear += o.linear; return *this; }
-  MotionVector& operator-=(const MotionVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
-  MotionVector operator+(const MotionVector& o) const { return {angular + o.angular, linear + o.linear}; }
-  MotionVector operator-(const MotionVector& o) const { return {angular - o.angular, linear - o.linear}; }
-  MotionVector operator-() const { return {-angular, -linear}; }
-  MotionVector operator*(const S& k) const { return {angular * k, linear * k}; }
+  SD_INLINE MotionVector& operator+=(const MotionVector& o) { angular += o.angular; linear += o.linear; return *this; }
+  SD_INLINE MotionVector& operator-=(const MotionVector& o) { angular -= o.angular; linear -= o.linear; return *this; }
+  SD_INLINE MotionVector operator+(const MotionVector& o) const { return {angular + o.angular, linear + o.linear}; }
+  SD_INLINE MotionVector operator-(const MotionVector& o) const { return {angular - o.angular, linear - o.linear}; }
+  SD_INLINE MotionVector operator-() const { return {-angular, -linear}; }
+  SD_INLINE MotionVector operator*(const S& k) const { return {angular * k, linear * k}; }
 };
 
 template <class S>

@@ -34,21 +34,21 @@ struct PluckerTransform {
   const Vector3<S>& translation() const { return r; }
 
   // ---- motions: X m = (E ω ; E (v − r×ω))   (eq. 11) -------------------------------------
-  MotionVector<S> apply(const MotionVector<S>& m) const {
+  SD_INLINE MotionVector<S> apply(const MotionVector<S>& m) const {
     return {E * m.angular, E * (m.linear - r.cross(m.angular))};
   }
   /// X^-1 m = (Eᵀ ω ; Eᵀ v + r × Eᵀ ω)
-  MotionVector<S> applyInverse(const MotionVector<S>& m) const {
+  SD_INLINE MotionVector<S> applyInverse(const MotionVector<S>& m) const {
     const Vector3<S> w = E.transpose() * m.angular;
     return {w, E.transpose() * m.linear + r.cross(w)};
   }
 
   // ---- forces: X* f = (E (n − r×f) ; E f)   (eq. 12) ------------------------------------
-  ForceVector<S> apply(const ForceVector<S>& f) const {
+  SD_INLINE ForceVector<S> apply(const ForceVector<S>& f) const {
     return {E * (f.angular - r.cross(f.linear)), E * f.linear};
   }
   /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
-  ForceVector<S> applyInverse(const ForceVector<S>& f) const {
+  SD_INLINE ForceVector<S> applyInverse(const ForceVector<S>& f) const {
     const Vector3<S> lin = E.transpose() * f.linear;
     return {E.transpose() * f.angular + r.cross(lin), lin};
   }
@@ -56,37 +56,69 @@ struct PluckerTransform {
   // ---- rigid inertias: I_B = X* I_A X^-1   (eq. 26) ---------------------------------------
   // Shifting the reference point by r: h' = h − m r, Ī' = Ī_O + h×r× + r×h× − m r×r×,
   // then rotating: h_B = E h', Ī_B = E Ī' Eᵀ. No division by the mass, so massless bodies work.
+  // With a×b× = b aᵀ − (a·b)1 the shift is symmetric rank-2 terms (shift_rotational_inertia).
   RigidInertia<S> apply(const RigidInertia<S>& I) const {
-    const Matrix3<S> rx = skew(r);
-    const Matrix3<S> hx = skew(I.first_moment);
-    const Matrix3<S> shifted = I.rotational_inertia + hx * rx + rx * hx - I.mass * rx * rx;
-    return RigidInertia<S>(I.mass, E * (I.first_moment - I.mass * r), E * shifted * E.transpose());
+    const Matrix3<S> shifted = shift_rotational_inertia(I.rotational_inertia, I.first_moment, I.mass, r, S(1));
+    return RigidInertia<S>(I.mass, E * (I.first_moment - I.mass * r), rotate_symmetric(E, shifted));
   }
   /// I_A = Xᵀ I_B X: the inverse of apply(RigidInertia).
   RigidInertia<S> applyInverse(const RigidInertia<S>& I) const {
     const Vector3<S> h = E.transpose() * I.first_moment;  // first moment about B's origin, A axes
-    const Matrix3<S> rotated = E.transpose() * I.rotational_inertia * E;
-    const Matrix3<S> rx = skew(r);
-    const Matrix3<S> hx = skew(h);
-    return RigidInertia<S>(I.mass, h + I.mass * r, rotated - hx * rx - rx * hx - I.mass * rx * rx);
+    const Matrix3<S> rotated = rotate_symmetric(Matrix3<S>(E.transpose()), I.rotational_inertia);
+    return RigidInertia<S>(I.mass, h + I.mass * r, shift_rotational_inertia(rotated, h, I.mass, r, S(-1)));
+  }
+
+  /// Ī + σ(h×r× + r×h×) − m r×r× = Ī + σ(r hᵀ + h rᵀ − 2(h·r)1) − m(r rᵀ − (r·r)1), symmetric.
+  static Matrix3<S> shift_rotational_inertia(const Matrix3<S>& I, const Vector3<S>& h, const S& m, const Vector3<S>& r,
+                                             const S& sigma) {
+    // m r is formed first, so a massless body far away gives 0, not 0 · ∞.
+    const Vector3<S> sh = sigma * h;
+    const Vector3<S> mr = m * r;
+    const S diagonal = mr.dot(r) - S(2) * sh.dot(r);
+    Matrix3<S> out;
+    for (int c = 0; c < 3; ++c)
+      for (int k = c; k < 3; ++k) {
+        const S v = I(k, c) + r[k] * sh[c] + sh[k] * r[c] - mr[k] * r[c] + (k == c ? diagonal : S(0));
+        out(k, c) = v;
+        out(c, k) = v;
+      }
+    return out;
+  }
+  /// R Ī Rᵀ for a symmetric Ī, its upper triangle copied from the lower so that it is exactly symmetric.
+  static Matrix3<S> rotate_symmetric(const Matrix3<S>& R, const Matrix3<S>& I) {
+    Matrix3<S> out = R * I * R.transpose();
+    out(0, 1) = out(1, 0);
+    out(0, 2) = out(2, 0);
+    out(1, 2) = out(2, 1);
+    return out;
   }
 
   /// Xᵀ Iᴬ X for an articulated inertia [A B; Bᵀ C] given in B coordinates, with
   /// A' = Eᵀ A E etc.:  [A' − B'r× + r×B'ᵀ − r×C'r×,  B' + r×C' ;  B'ᵀ − C'r×,  C'].
+  /// Row k of B'r× is b'_k × r, column c of r×C' is r × c'_c, and row k of r×C'r× is
+  /// (row k of r×C') × r: cross products instead of products with skew matrices.
   ArticulatedInertia<S> applyInverse(const ArticulatedInertia<S>& Ia) const {
+    ArticulatedInertia<S> out;  // zero
+    applyInverseAdd(Ia, out);
+    return out;
+  }
+  /// out += Xᵀ Iᴬ X: the ABA's inward accumulation without a temporary 6×6 matrix.
+  void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
     const Matrix3<S> Et = E.transpose();
     const Matrix3<S> A = Et * Ia.matrix.template topLeftCorner<3, 3>() * E;
     const Matrix3<S> B = Et * Ia.matrix.template topRightCorner<3, 3>() * E;
     const Matrix3<S> C = Et * Ia.matrix.template bottomRightCorner<3, 3>() * E;
-    const Matrix3<S> rx = skew(r);
-    const Matrix3<S> Brx = B * rx;
-    const Matrix3<S> rxC = rx * C;
-    ArticulatedInertia<S> out;
-    out.matrix.template topLeftCorner<3, 3>() = A - Brx - Brx.transpose() - rxC * rx;
-    out.matrix.template topRightCorner<3, 3>() = B + rxC;
-    out.matrix.template bottomLeftCorner<3, 3>() = (B + rxC).transpose();
-    out.matrix.template bottomRightCorner<3, 3>() = C;
-    return out;
+    Matrix3<S> Brx, rxC, rxCrx;
+    for (int k = 0; k < 3; ++k) {
+      Brx.row(k) = Vector3<S>(B.row(k).transpose()).cross(r).transpose();
+      rxC.col(k) = r.cross(Vector3<S>(C.col(k)));
+    }
+    for (int k = 0; k < 3; ++k) rxCrx.row(k) = Vector3<S>(rxC.row(k).transpose()).cross(r).transpose();
+    const Matrix3<S> B_plus_rxC = B + rxC;
+    out.matrix.template topLeftCorner<3, 3>() += A - Brx - Brx.transpose() - rxCrx;
+    out.matrix.template topRightCorner<3, 3>() += B_plus_rxC;
+    out.matrix.template bottomLeftCorner<3, 3>() += B_plus_rxC.transpose();
+    out.matrix.template bottomRightCorner<3, 3>() += C;
   }
 
   // ---- composition and inverse ----------------------------------------------------------

@@ -44,7 +44,7 @@ struct RigidInertia {
   }
 
   /// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25 applied to a motion vector)
-  ForceVector<S> operator*(const MotionVector<S>& v) const {
+  SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
     return {rotational_inertia * v.angular + first_moment.cross(v.linear),
             mass * v.linear - first_moment.cross(v.angular)};
   }
