@@ -8,6 +8,7 @@
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
 #include "spatial_dynamics/algorithms/rnea_batch.hpp"
+#include "spatial_dynamics/reference/high_precision.hpp"
 
 namespace bench {
 
@@ -15,7 +16,7 @@ template <class S>
 class SpatialDynamicsAdapter : public Adapter {
  public:
   explicit SpatialDynamicsAdapter(const spatial_dynamics::Model<double>& model)
-      : model_(model.cast<S>()), data_(model_), refinement_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
+      : model_(model.cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
         batch_tau_(model_.nv, kBatchStates) {}
 
   std::string library() const override { return "spatial_dynamics"; }
@@ -28,7 +29,7 @@ class SpatialDynamicsAdapter : public Adapter {
         return "rnea_batch (" + std::to_string(kBatchStates) + " states per call, " +
                std::to_string(spatial_dynamics::kDefaultBatchLanes<S>) + " lanes; time per state)";
       case Algorithm::Aba: return "aba";
-      case Algorithm::AbaRefined: return "aba_refined (long double residual)";
+      case Algorithm::AbaRefined: return "aba_refined (long double residual, float128 where that cannot resolve the result)";
       case Algorithm::Crba: return "crba";
       case Algorithm::CrbaCholesky: return "crba + nonlinear_effects + Eigen LLT";
       case Algorithm::Gravity: return "gravity_torques";
@@ -68,7 +69,9 @@ class SpatialDynamicsAdapter : public Adapter {
                        batch_qdd_.middleCols(k, kBatchStates), batch_tau_);
         return;
       case Algorithm::Aba: sd::aba(model_, data_, q_[k], qd_[k], tau_[k]); return;
-      case Algorithm::AbaRefined: sd::aba_refined(model_, data_, refinement_, q_[k], qd_[k], tau_[k]); return;
+      case Algorithm::AbaRefined:
+        sd::aba_refined(model_, data_, refinement_, refinement_fine_, q_[k], qd_[k], tau_[k]);
+        return;
       case Algorithm::Crba: sd::crba(model_, data_, q_[k]); return;
       case Algorithm::CrbaCholesky:  // q̈ = M⁻¹ (τ − h), M = LLᵀ
         llt_.compute(sd::crba(model_, data_, q_[k]));
@@ -107,6 +110,7 @@ class SpatialDynamicsAdapter : public Adapter {
   spatial_dynamics::Model<S> model_;
   spatial_dynamics::Data<S> data_;
   spatial_dynamics::RefinementWorkspace<S> refinement_;
+  spatial_dynamics::RefinementWorkspace<S, spatial_dynamics::Quad> refinement_fine_;
   Eigen::LLT<spatial_dynamics::MatrixX<S>> llt_;
   spatial_dynamics::VectorX<S> rhs_;
   std::vector<spatial_dynamics::VectorX<S>> q_, qd_, qdd_, tau_;

@@ -1,10 +1,13 @@
 // Forward dynamics with iterative refinement (aba_refined) against the float128 reference: on
-// every shared robot, fixed and floating base, it reaches the double rounding level; on an
-// ill-conditioned random chain it wins at least two digits over plain ABA; a float model refines
-// too; a massless leaf still fails naming the joint.
+// every shared robot, fixed and floating base, it reaches the double rounding level, and with the
+// float128 escalation it does so on states whose long double residual cannot (tiny q̈ against
+// large forces) and on an ill-conditioned random chain; a float model refines too; a massless
+// leaf still fails naming the joint. The long double sin and cos are checked against float128.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
@@ -18,16 +21,19 @@ using Eigen::VectorXd;
 namespace {
 
 struct Errors {
-  double plain = 0, refined = 0;
-  double kappa = 0;  // largest condition number of M met
-  int max_iterations = 0;
+  double plain = 0, refined = 0, escalated = 0;  // max relative errors: aba, long double only, with float128
+  double kappa = 0;                              // largest condition number of M met
+  int max_iterations = 0;                        // long double corrections
+  int escalations = 0;                           // calls that went on with float128 residuals
 };
 
-/// Max relative errors of aba and aba_refined over `states` random states (q̇, q̈ ∈ U(−1, 1),
-/// τ = RNEA(q, q̇, q̈) in double), against ABA in float128 on the same (exactly converted) inputs.
-Errors measure(const sd::Model<double>& model, int states, unsigned seed) {
+/// Max relative errors of aba and aba_refined over `states` random states (q̇ ∈ U(−1, 1),
+/// q̈ ∈ U(−s, s) for s = qdd_scale, τ = RNEA(q, q̇, q̈) in double), against ABA in float128 on the
+/// same (exactly converted) inputs.
+Errors measure(const sd::Model<double>& model, int states, unsigned seed, double qdd_scale = 1.0) {
   sd::Data<double> data(model);
   sd::RefinementWorkspace<double> ws(model);
+  sd::RefinementWorkspace<double, sd::Quad> fine(model);
   const sd::Model<sd::Quad> reference_model = model.cast<sd::Quad>();
   sd::Data<sd::Quad> reference_data(reference_model);
   std::mt19937 rng(seed);
@@ -35,12 +41,15 @@ Errors measure(const sd::Model<double>& model, int states, unsigned seed) {
   for (int s = 0; s < states; ++s) {
     const VectorXd q = sd_test::random_configuration(model, rng);
     const VectorXd qd = sd_test::random_vector(model.nv, rng);
-    const VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng));
+    const VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng, qdd_scale));
     const sd::VectorX<sd::Quad> reference =
         sd::aba(reference_model, reference_data, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
     e.plain = std::max(e.plain, sd::relative_error_to(sd::aba(model, data, q, qd, tau), reference));
     e.refined = std::max(e.refined, sd::relative_error_to(sd::aba_refined(model, data, ws, q, qd, tau), reference));
     e.max_iterations = std::max(e.max_iterations, ws.iterations);
+    e.escalated =
+        std::max(e.escalated, sd::relative_error_to(sd::aba_refined(model, data, ws, fine, q, qd, tau), reference));
+    e.escalations += fine.iterations > 0;
     const Eigen::VectorXd lambda =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sd::crba(model, data, q), Eigen::EigenvaluesOnly).eigenvalues();
     e.kappa = std::max(e.kappa, lambda.maxCoeff() / lambda.minCoeff());
@@ -60,14 +69,16 @@ TEST_P(RefinedRobot, ReachesDoubleRoundingLevel) {
   sd::ModelBuildOptions options;
   options.floating_base = floating;
   const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file), options);
-  const Errors e = measure(model, 50, 11);
-  std::printf("[%s%s] plain ABA %.3g, refined %.3g (%d corrections at most, kappa %.2g)\n", file.c_str(),
-              floating ? " floating" : "", e.plain, e.refined, e.max_iterations, e.kappa);
+  const Errors e = measure(model, 100, 11);
+  std::printf("[%s%s] plain ABA %.3g, refined %.3g (%d corrections at most), with float128 %.3g (%d escalated), "
+              "kappa %.2g\n", file.c_str(), floating ? " floating" : "", e.plain, e.refined, e.max_iterations,
+              e.escalated, e.escalations, e.kappa);
   // The result is rounded once from the converged wide iterate (≤ ε/2 per entry; 4ε allows for
   // entries of very different size in the norm), and the iteration converges to what the long
   // double residual resolves: κ(M)·ε_ld relative (5e4 · 1.1e-19 for the floating double pendulum).
   EXPECT_LE(e.refined, 4 * kEps + e.kappa * kEpsWide) << file;
   EXPECT_LE(e.refined, e.plain) << file;
+  EXPECT_LE(e.escalated, e.refined) << file;
   EXPECT_GE(e.max_iterations, 1) << file;
 }
 
@@ -78,17 +89,61 @@ INSTANTIATE_TEST_SUITE_P(SharedRobots, RefinedRobot,
                            return f.substr(0, f.find('.')) + (std::get<1>(info.param) ? "_floating" : "_fixed");
                          });
 
-TEST(RefinedChain, WinsAtLeastTwoDigitsOnAnIllConditionedChain) {
+TEST(RefinedChain, WinsAtLeastTwoDigitsOnAnIllConditionedChainAndFloat128ReachesRounding) {
   std::mt19937 rng(200);
   const sd::Model<double> model =
       sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(200, rng)));
   const Errors e = measure(model, 10, 12);
-  std::printf("[200-body chain] plain ABA %.3g, refined %.3g (%d corrections at most)\n", e.plain, e.refined,
-              e.max_iterations);
-  // Each correction gains about κ ε (≈ 1e-6 here); the limit is the long double residual,
-  // about κ ε_ld = κ ε / 2048: at least a factor 100 below plain ABA's κ ε-sized error.
+  std::printf("[200-body chain] plain ABA %.3g, refined %.3g (%d corrections at most), with float128 %.3g "
+              "(%d escalated)\n", e.plain, e.refined, e.max_iterations, e.escalated, e.escalations);
+  // The limit of the long double residual is about κ ε_ld = κ ε / 2048: at least a factor 100
+  // below plain ABA's κ ε-sized error. That limit is above ε (κ ≈ 1e6 here), so every call goes
+  // on with float128 residuals (ε_F = 1.9e-34), whose limit is far below double rounding.
   EXPECT_LE(e.refined, 1e-2 * e.plain);
-  EXPECT_GE(e.max_iterations, 2);
+  EXPECT_GE(e.max_iterations, 1);
+  EXPECT_EQ(e.escalations, 10);
+  EXPECT_LE(e.escalated, 4 * kEps);
+}
+
+TEST(RefinedEscalation, ReachesRoundingWhereTheLongDoubleResidualCannot) {
+  // Accelerations 1e-3 times smaller than the forces that balance them (τ ≈ h(q, q̇)): plain ABA's
+  // relative error grows a thousandfold, and the long double residual's limit passes ε.
+  const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("double_pendulum.urdf"));
+  const Errors e = measure(model, 200, 14, 1e-3);
+  std::printf("[double pendulum, q̈ ∈ U(−1e-3, 1e-3)] plain ABA %.3g, refined %.3g, with float128 %.3g "
+              "(%d of 200 escalated)\n", e.plain, e.refined, e.escalated, e.escalations);
+  EXPECT_GT(e.refined, 4 * kEps);  // the case the escalation is for
+  EXPECT_LE(e.escalated, 4 * kEps);
+  EXPECT_GE(e.escalations, 100);
+}
+
+TEST(WideSinCos, MatchesFloat128) {
+  // Reduction boundaries (multiples of π/4 and π/2 and their neighbours), both signs, up to the
+  // 1e5 range of the Cody–Waite reduction, and beyond it (where glibc's sinl and cosl take over).
+  std::vector<long double> xs;
+  for (int k = -400; k <= 400; ++k) {
+    const double x = k * M_PI / 4;
+    xs.push_back(x);
+    xs.push_back(std::nextafter(x, 1e300));
+    xs.push_back(std::nextafter(x, -1e300));
+  }
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> wide(-1e5, 1e5), narrow(-10, 10);
+  for (int k = 0; k < 2000; ++k) {
+    xs.push_back(wide(rng));
+    xs.push_back(narrow(rng));
+  }
+  for (long double x : {1e-300L, -3e-8L, 99999.99L, 1e5L, 1.0000001e5L, -7e6L}) xs.push_back(x);
+  double worst = 0;
+  for (long double x : xs) {
+    long double s, c;
+    sd::detail::sin_cos_wide(x, s, c);
+    const sd::Quad xq(x);
+    worst = std::max({worst, static_cast<double>(abs(sd::Quad(s) - sin(xq))),
+                      static_cast<double>(abs(sd::Quad(c) - cos(xq)))});
+  }
+  std::printf("[sin_cos_wide] max absolute error %.3g over %zu arguments\n", worst, xs.size());
+  EXPECT_LE(worst, 2 * kEpsWide);
 }
 
 TEST(RefinedFloat, RefinesAFloatModelToFloatRounding) {

@@ -9,6 +9,7 @@
 #include <new>
 
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
+#include "spatial_dynamics/reference/high_precision.hpp"
 #include "test_utils.hpp"
 
 namespace {
@@ -79,3 +80,20 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
 
 INSTANTIATE_TEST_SUITE_P(Base, NoAllocation, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? std::string("Floating") : std::string("Fixed"); });
+
+TEST(NoAllocation, RefinementWithFloat128ResidualsDoesNotAllocate) {
+  // q̈ a thousand times smaller than the forces: the long double residual cannot resolve the
+  // result, so the call goes on with float128 residuals (checked through fine.iterations).
+  const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("double_pendulum.urdf"));
+  sd::Data<double> data(model);
+  sd::RefinementWorkspace<double> ws(model);
+  sd::RefinementWorkspace<double, sd::Quad> fine(model);
+  std::mt19937 rng(5);
+  const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
+  const Eigen::VectorXd qd = sd_test::random_vector(model.nv, rng);
+  const Eigen::VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng, 1e-4));
+  const long before = g_allocations;
+  sd::aba_refined(model, data, ws, fine, q, qd, tau);
+  EXPECT_EQ(g_allocations - before, 0);
+  EXPECT_GE(fine.iterations, 1);
+}

@@ -24,20 +24,21 @@ template <class S>
 }
 
 template <class S>
-const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
-                           const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
-                           const ForceVector<S>* f_ext) {
-  using std::abs;
+SD_INLINE void check_aba_inputs(const Model<S>& model, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
+                                const ConstVectorRef<S>& tau) {
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   check_length("effort", tau.size(), model.nv);
   if (model.has_coupled_joints)
     throw std::invalid_argument("the model has coupled mimic joints, which the ABA cannot solve; use forward_dynamics()");
-  const int n = model.nbodies();
+}
 
-  // Pass 1 (outward): velocities, velocity-product accelerations, rigid bias forces.
+/// Pass 1 (outward): transforms, velocities, velocity-product accelerations, rigid bias forces.
+template <class S>
+SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                                 const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext) {
   data.v[0] = MotionVector<S>::Zero();
-  for (int i = 1; i < n; ++i) {
+  for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
     const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
@@ -47,9 +48,12 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
     data.f[i] = cross(data.v[i], model.inertia[i] * data.v[i]);                 // pᴬ_i = v ×* I v
     if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext
   }
+}
 
-  // Pass 2 (inward): articulated inertias and bias forces.
-  for (int i = n - 1; i >= 1; --i) {
+/// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ.
+template <class S>
+SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau) {
+  for (int i = model.nbodies() - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
     Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place below
@@ -81,10 +85,13 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
       data.u[i] = tau.template segment<6>(j.idx_v) - pA;
     }
   }
+}
 
-  // Pass 3 (outward): accelerations.
+/// Pass 3 (outward): accelerations into data.qdd.
+template <class S>
+SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data) {
   data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);             // a_0 = −a_g
-  for (int i = 1; i < n; ++i) {
+  for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const MotionVector<S> a_prime = data.X_up[i].apply(data.a[model.parent[i]]) + data.c[i];
     const Vector6<S> ap = a_prime.toVector();
@@ -98,6 +105,16 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
       data.a[i] = a_prime + MotionVector<S>(qdd);
     }
   }
+}
+
+template <class S>
+const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                           const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
+                           const ForceVector<S>* f_ext) {
+  check_aba_inputs(model, q, qd, tau);
+  aba_velocity_pass(model, data, q, qd, f_ext);
+  aba_inertia_pass(model, data, tau);
+  aba_acceleration_pass(model, data);
   return data.qdd;
 }
 

@@ -4,9 +4,14 @@
 //   r_k = τ − ID(q, q̇, x_k) = τ − h − M x_k             in W, a wider type (long double)
 //   δ_k = M⁻¹ r_k                                       in S, reusing ABA's factorisation
 //   x_{k+1} = x_k + δ_k                                  in W
-// repeated until the correction no longer changes the result (‖δ‖ ≤ ε_S ‖x‖) or stops shrinking,
-// or max_iterations corrections were made. Each step gains a factor of about κ(M)·ε_S; the
-// limit is the accuracy of the residual, about κ(M)·ε_W relative instead of ABA's κ(M)·ε_S.
+// Each solve in S has a relative error of about ρ = κ(M)·ε_S, which the first correction
+// measures (‖δ₀‖/‖x‖ is x₀'s error). The loop stops when the correction no longer changes the
+// result (‖δ‖ ≤ ε_S ‖x‖), when the next one, about ρ‖δ‖, would not (Higham eq. 12.7), when
+// the corrections stop shrinking, or after max_iterations. The limit is the residual's
+// accuracy, about ρ·ε_W/ε_S relative instead of ABA's ρ. Where that exceeds ε_S (κ(M) beyond
+// about ε_S/ε_W ≈ 2000 in double and long double), the overload with a second workspace goes
+// on with a residual in a finer type F (float128) from the wide iterate: dearer per step, and
+// taken only by those calls.
 // Since ID is linear in q̈, r_{k+1} = r_k − M δ_k: only the first residual needs the velocity
 // and gravity terms; the later ones are mass-matrix products (one outward and one inward pass),
 // which can even be done in S once δ_k is small enough (see subtract_mass_matrix_product_narrow).
@@ -16,6 +21,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "spatial_dynamics/algorithms/aba.hpp"
@@ -36,6 +42,7 @@ struct RefinementWorkspace {
   std::vector<MotionVector<W>> v_wide;
   std::vector<MotionVector<W>> a_wide;
   std::vector<ForceVector<W>> f_wide;
+  std::vector<MotionVector<W>> c_wide;  // velocity-product accelerations v_i × S q̇
   VectorX<W> q_wide, qd_wide;
   VectorX<W> x_wide;         // the refined accelerations x_k
   VectorX<W> residual_wide;  // r_k
@@ -46,6 +53,7 @@ struct RefinementWorkspace {
   std::vector<Vector6<S>> u;
   VectorX<S> residual, delta;
   int iterations = 0;  // corrections applied by the last call
+  S first_correction = S(0);  // ‖δ₀‖/‖x‖ of the last call: the unrefined result's relative error
 
   explicit RefinementWorkspace(const Model<S>& model)
       : model_wide(model.template cast<W>()),
@@ -53,6 +61,7 @@ struct RefinementWorkspace {
         v_wide(model.nbodies(), MotionVector<W>::Zero()),
         a_wide(model.nbodies(), MotionVector<W>::Zero()),
         f_wide(model.nbodies(), ForceVector<W>::Zero()),
+        c_wide(model.nbodies(), MotionVector<W>::Zero()),
         q_wide(VectorX<W>::Zero(model.nq)),
         qd_wide(VectorX<W>::Zero(model.nv)),
         x_wide(VectorX<W>::Zero(model.nv)),
@@ -67,49 +76,83 @@ struct RefinementWorkspace {
 
 namespace detail {
 
-// The wide passes are written coefficient by coefficient: Eigen's generic kernels for a scalar
-// it cannot vectorise (long double) are several times slower than these few lines.
+// The wide passes are written coefficient by coefficient, into their destinations: Eigen's
+// generic kernels for a scalar it cannot vectorise (long double) are several times slower, and
+// with x87 arithmetic every temporary vector costs 80-bit stores and loads, dearer than the
+// arithmetic itself. A parameter of scalar P (the model's own double, which long double
+// arithmetic loads exactly and more cheaply than a stored long double) enters as W(p).
 
-template <class W>
-inline Vector3<W> times(const Matrix3<W>& E, const Vector3<W>& x) {  // E x
-  return Vector3<W>(E(0, 0) * x[0] + E(0, 1) * x[1] + E(0, 2) * x[2], E(1, 0) * x[0] + E(1, 1) * x[1] + E(1, 2) * x[2],
-                    E(2, 0) * x[0] + E(2, 1) * x[1] + E(2, 2) * x[2]);
+template <class P, class W>
+inline Vector3<W> cross3(const Vector3<P>& a, const Vector3<W>& b) {
+  return Vector3<W>(W(a[1]) * b[2] - W(a[2]) * b[1], W(a[2]) * b[0] - W(a[0]) * b[2], W(a[0]) * b[1] - W(a[1]) * b[0]);
 }
+/// out = X m = (E ω ; E (v − r×ω))   (eq. 11); out must not be m.
 template <class W>
-inline Vector3<W> transpose_times(const Matrix3<W>& E, const Vector3<W>& x) {  // Eᵀ x
-  return Vector3<W>(E(0, 0) * x[0] + E(1, 0) * x[1] + E(2, 0) * x[2], E(0, 1) * x[0] + E(1, 1) * x[1] + E(2, 1) * x[2],
-                    E(0, 2) * x[0] + E(1, 2) * x[1] + E(2, 2) * x[2]);
+inline void apply_wide_into(const PluckerTransform<W>& X, const MotionVector<W>& m, MotionVector<W>& out) {
+  const Matrix3<W>& E = X.E;
+  const Vector3<W>& r = X.r;
+  const W t0 = m.linear[0] - (r[1] * m.angular[2] - r[2] * m.angular[1]);
+  const W t1 = m.linear[1] - (r[2] * m.angular[0] - r[0] * m.angular[2]);
+  const W t2 = m.linear[2] - (r[0] * m.angular[1] - r[1] * m.angular[0]);
+  for (int row = 0; row < 3; ++row) {
+    out.angular[row] = E(row, 0) * m.angular[0] + E(row, 1) * m.angular[1] + E(row, 2) * m.angular[2];
+    out.linear[row] = E(row, 0) * t0 + E(row, 1) * t1 + E(row, 2) * t2;
+  }
 }
+/// out += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f); out must not be f.
 template <class W>
-inline Vector3<W> cross3(const Vector3<W>& a, const Vector3<W>& b) {
-  return Vector3<W>(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+inline void add_apply_transpose_wide(const PluckerTransform<W>& X, const ForceVector<W>& f, ForceVector<W>& out) {
+  const Matrix3<W>& E = X.E;
+  const Vector3<W>& r = X.r;
+  const W l0 = E(0, 0) * f.linear[0] + E(1, 0) * f.linear[1] + E(2, 0) * f.linear[2];
+  const W l1 = E(0, 1) * f.linear[0] + E(1, 1) * f.linear[1] + E(2, 1) * f.linear[2];
+  const W l2 = E(0, 2) * f.linear[0] + E(1, 2) * f.linear[1] + E(2, 2) * f.linear[2];
+  out.linear[0] += l0;
+  out.linear[1] += l1;
+  out.linear[2] += l2;
+  out.angular[0] += E(0, 0) * f.angular[0] + E(1, 0) * f.angular[1] + E(2, 0) * f.angular[2] + (r[1] * l2 - r[2] * l1);
+  out.angular[1] += E(0, 1) * f.angular[0] + E(1, 1) * f.angular[1] + E(2, 1) * f.angular[2] + (r[2] * l0 - r[0] * l2);
+  out.angular[2] += E(0, 2) * f.angular[0] + E(1, 2) * f.angular[1] + E(2, 2) * f.angular[2] + (r[0] * l1 - r[1] * l0);
 }
-/// X m = (E ω ; E (v − r×ω))   (eq. 11)
-template <class W>
-inline MotionVector<W> apply_wide(const PluckerTransform<W>& X, const MotionVector<W>& m) {
-  return {times(X.E, m.angular), times(X.E, Vector3<W>(m.linear - cross3(X.r, m.angular)))};
+/// f += I a, I a = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25)
+template <class P, class W>
+inline void add_inertia_times_wide(const RigidInertia<P>& I, const MotionVector<W>& a, ForceVector<W>& f) {
+  const Matrix3<P>& J = I.rotational_inertia;
+  const Vector3<P>& h = I.first_moment;
+  const Vector3<W>& w = a.angular;
+  const Vector3<W>& v = a.linear;
+  for (int row = 0; row < 3; ++row) {
+    const int r1 = row == 2 ? 0 : row + 1, r2 = row == 0 ? 2 : row - 1;  // (row, r1, r2) cyclic
+    f.angular[row] += W(J(row, 0)) * w[0] + W(J(row, 1)) * w[1] + W(J(row, 2)) * w[2] + (W(h[r1]) * v[r2] - W(h[r2]) * v[r1]);
+    f.linear[row] += W(I.mass) * v[row] - (W(h[r1]) * w[r2] - W(h[r2]) * w[r1]);
+  }
 }
-/// Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
-template <class W>
-inline ForceVector<W> apply_transpose_wide(const PluckerTransform<W>& X, const ForceVector<W>& f) {
-  const Vector3<W> lin = transpose_times(X.E, f.linear);
-  return {Vector3<W>(transpose_times(X.E, f.angular) + cross3(X.r, lin)), lin};
-}
-/// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25)
-template <class W>
-inline ForceVector<W> inertia_times_wide(const RigidInertia<W>& I, const MotionVector<W>& v) {
-  return {Vector3<W>(times(I.rotational_inertia, v.angular) + cross3(I.first_moment, v.linear)),
-          Vector3<W>(I.mass * v.linear - cross3(I.first_moment, v.angular))};
-}
-/// v ×* f = (ω×n + v×f ; ω×f)   (eq. 18)
-template <class W>
-inline ForceVector<W> force_cross_wide(const MotionVector<W>& v, const ForceVector<W>& f) {
-  return {Vector3<W>(cross3(v.angular, f.angular) + cross3(v.linear, f.linear)), cross3(v.angular, f.linear)};
+/// f = v ×* I v = (ω×n + v×p ; ω×p) with (n ; p) = I v   (eqs. 18, 25)
+template <class P, class W>
+inline void bias_force_wide(const RigidInertia<P>& I, const MotionVector<W>& velocity, ForceVector<W>& f) {
+  const Matrix3<P>& J = I.rotational_inertia;
+  const Vector3<P>& h = I.first_moment;
+  const Vector3<W>& w = velocity.angular;
+  const Vector3<W>& v = velocity.linear;
+  const W p0 = W(I.mass) * v[0] - (W(h[1]) * w[2] - W(h[2]) * w[1]);
+  const W p1 = W(I.mass) * v[1] - (W(h[2]) * w[0] - W(h[0]) * w[2]);
+  const W p2 = W(I.mass) * v[2] - (W(h[0]) * w[1] - W(h[1]) * w[0]);
+  f.linear[0] = w[1] * p2 - w[2] * p1;
+  f.linear[1] = w[2] * p0 - w[0] * p2;
+  f.linear[2] = w[0] * p1 - w[1] * p0;
+  const W n0 = W(J(0, 0)) * w[0] + W(J(0, 1)) * w[1] + W(J(0, 2)) * w[2] + (W(h[1]) * v[2] - W(h[2]) * v[1]);
+  const W n1 = W(J(1, 0)) * w[0] + W(J(1, 1)) * w[1] + W(J(1, 2)) * w[2] + (W(h[2]) * v[0] - W(h[0]) * v[2]);
+  const W n2 = W(J(2, 0)) * w[0] + W(J(2, 1)) * w[1] + W(J(2, 2)) * w[2] + (W(h[0]) * v[1] - W(h[1]) * v[0]);
+  f.angular[0] = (w[1] * n2 - w[2] * n1) + (v[1] * p2 - v[2] * p1);
+  f.angular[1] = (w[2] * n0 - w[0] * n2) + (v[2] * p0 - v[0] * p2);
+  f.angular[2] = (w[0] * n1 - w[1] * n0) + (v[0] * p1 - v[1] * p0);
 }
 
 /// sin x and cos x in W. For long double: Cody–Waite reduction x = k π/2 + y (π/2 split into
-/// three pieces of ≤ 33 bits, so k·piece is exact for |k| < 2^31) and Taylor series on
-/// |y| ≤ π/4, whose truncation (|y|²³/23! < 2e-25) is below long double's ε; glibc's sinl and
+/// three pieces of ≤ 33 bits, so k·piece is exact for |k| < 2^31) and Taylor series of ten terms
+/// on |y| ≤ π/4, whose truncations (|y|²¹/21! < 2e-22 for sin, |y|²⁰/20! < 4e-21 for cos) are
+/// below long double's ε. k is rounded in double (exact to within 1e-11 of x 2/π for |x| ≤ 1e5,
+/// so |y| stays within π/4 + 2e-11), which avoids the x87 rounding-mode switch; glibc's sinl and
 /// cosl take several times longer. Other types use their own sin and cos.
 template <class W>
 inline void sin_cos_wide(const W& x, W& s, W& c) {
@@ -142,15 +185,19 @@ inline void sin_cos_wide(const long double& x, long double& s, long double& c) {
   constexpr long double pio2_3 = 2.02226624871116645580e-21L;   // 0x3BA3198A 2E000000
   constexpr long double pio2_3t = 8.47842766036889956997e-32L;  // π/2 − pio2_1 − pio2_2 − pio2_3
   constexpr long double two_over_pi = 0.636619772367581343075535053490057448L;
-  static constexpr std::array<long double, 11> sin_coefficients = alternating_inverse_factorials<11>(1);
-  static constexpr std::array<long double, 12> cos_coefficients = alternating_inverse_factorials<12>(0);
-  const long long quadrant = static_cast<long long>(x * two_over_pi + (x < 0 ? -0.5L : 0.5L));  // round(x 2/π)
-  const long double k = static_cast<long double>(quadrant);
+  static constexpr std::array<long double, 10> sin_coefficients = alternating_inverse_factorials<10>(1);
+  static constexpr std::array<long double, 10> cos_coefficients = alternating_inverse_factorials<10>(0);
+  constexpr double round_shift = 6755399441055744.0;  // 1.5·2⁵²: adding and subtracting it rounds to an integer
+  const double k_double = (static_cast<double>(x) * static_cast<double>(two_over_pi) + round_shift) - round_shift;
+  const long long quadrant = static_cast<long long>(k_double);  // round(x 2/π)
+  const long double k = k_double;
   const long double y = (((x - k * pio2_1) - k * pio2_2) - k * pio2_3) - k * pio2_3t;
   const long double z = y * y;
-  long double ps = sin_coefficients[10], pc = cos_coefficients[11];
-  for (int j = 9; j >= 0; --j) ps = sin_coefficients[j] + z * ps;   // sin y = y Σ (−z)^j/(2j+1)!
-  for (int j = 10; j >= 0; --j) pc = cos_coefficients[j] + z * pc;  // cos y = Σ (−z)^j/(2j)!
+  long double ps = sin_coefficients[9], pc = cos_coefficients[9];
+  for (int j = 8; j >= 0; --j) {
+    ps = sin_coefficients[j] + z * ps;  // sin y = y Σ (−z)^j/(2j+1)!
+    pc = cos_coefficients[j] + z * pc;  // cos y = Σ (−z)^j/(2j)!
+  }
   const long double sy = y * ps;
   switch (quadrant & 3) {  // x = k π/2 + y
     case 0: s = sy; c = pc; return;
@@ -160,9 +207,10 @@ inline void sin_cos_wide(const long double& x, long double& s, long double& c) {
   }
 }
 
-/// ^iX_λ(i) in W, as joint_up_transform computes it, with the products written out.
-template <class W>
-inline void wide_up_transform(const Model<W>& model, int i, const W* q, PluckerTransform<W>& X) {
+/// ^iX_λ(i) in W, as joint_up_transform computes it, with the products written out; X_tree and
+/// the axis are read from `params` (see times()).
+template <class W, class P>
+inline void wide_up_transform(const Model<W>& model, const Model<P>& params, int i, const W* q, PluckerTransform<W>& X) {
   const Joint<W>& j = model.joints[i];
   if (j.type != JointType::Revolute) {
     joint_up_transform(model, i, q, X);
@@ -170,70 +218,148 @@ inline void wide_up_transform(const Model<W>& model, int i, const W* q, PluckerT
   }
   W c, s;
   sin_cos_wide(q[0], s, c);
-  const PluckerTransform<W>& Xt = model.X_tree[i];
-  X.r = Xt.r;
-  switch (j.axis_kind) {
-    case AxisKind::X: X.E = Xt.E; rotate_rows(X.E, 1, 2, c, s); return;
-    case AxisKind::Y: X.E = Xt.E; rotate_rows(X.E, 2, 0, c, s); return;
-    case AxisKind::Z: X.E = Xt.E; rotate_rows(X.E, 0, 1, c, s); return;
-    default: {
-      // E_J = c 1 − s a× + (1 − c) a aᵀ (RBDA eq. 2.24, transposed); E = E_J E_tree.
-      const Vector3<W>& a = j.axis;
-      const W t = W(1) - c;
-      Matrix3<W> EJ;
-      EJ(0, 0) = c + t * a[0] * a[0];        EJ(0, 1) = s * a[2] + t * a[0] * a[1]; EJ(0, 2) = -s * a[1] + t * a[0] * a[2];
-      EJ(1, 0) = -s * a[2] + t * a[1] * a[0]; EJ(1, 1) = c + t * a[1] * a[1];       EJ(1, 2) = s * a[0] + t * a[1] * a[2];
-      EJ(2, 0) = s * a[1] + t * a[2] * a[0];  EJ(2, 1) = -s * a[0] + t * a[2] * a[1]; EJ(2, 2) = c + t * a[2] * a[2];
-      for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col)
-          X.E(row, col) = EJ(row, 0) * Xt.E(0, col) + EJ(row, 1) * Xt.E(1, col) + EJ(row, 2) * Xt.E(2, col);
-      return;
+  const Matrix3<P>& Et = params.X_tree[i].E;
+  X.r = params.X_tree[i].r.template cast<W>();
+  if (j.axis_kind != AxisKind::General) {
+    // Rows (m, n) rotated as rotate_rows does, row l (the axis) copied.
+    const int l = static_cast<int>(j.axis_kind), m = l == 2 ? 0 : l + 1, n = l == 0 ? 2 : l - 1;
+    for (int k = 0; k < 3; ++k) {
+      const W em(Et(m, k)), en(Et(n, k));
+      X.E(m, k) = c * em + s * en;
+      X.E(n, k) = c * en - s * em;
+      X.E(l, k) = W(Et(l, k));
+    }
+    return;
+  }
+  // E_J = c 1 − s a× + (1 − c) a aᵀ (RBDA eq. 2.24, transposed); E = E_J E_tree.
+  const Vector3<W> a = params.joints[i].axis.template cast<W>();
+  const W t = W(1) - c;
+  Matrix3<W> EJ;
+  EJ(0, 0) = c + t * a[0] * a[0];        EJ(0, 1) = s * a[2] + t * a[0] * a[1]; EJ(0, 2) = -s * a[1] + t * a[0] * a[2];
+  EJ(1, 0) = -s * a[2] + t * a[1] * a[0]; EJ(1, 1) = c + t * a[1] * a[1];       EJ(1, 2) = s * a[0] + t * a[1] * a[2];
+  EJ(2, 0) = s * a[1] + t * a[2] * a[0];  EJ(2, 1) = -s * a[0] + t * a[2] * a[1]; EJ(2, 2) = c + t * a[2] * a[2];
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col)
+      X.E(row, col) = EJ(row, 0) * W(Et(0, col)) + EJ(row, 1) * W(Et(1, col)) + EJ(row, 2) * W(Et(2, col));
+}
+
+/// Where the wide passes read the model's parameters: from the model itself when W is a hardware
+/// type (the conversion is exact and free), else from the workspace's converted copy.
+template <class S, class W>
+const auto& wide_parameters(const Model<S>& model, const RefinementWorkspace<S, W>& ws) {
+  if constexpr (std::is_floating_point<W>::value) return model;
+  else return ws.model_wide;
+}
+
+/// v × e_k q̇ for a coordinate axis k: (ω × e_k q̇ ; v_O × e_k q̇), where w × e_k has the two
+/// entries w_{k+2}, −w_{k+1} at k+1, k+2.
+template <class W>
+inline MotionVector<W> cross_coordinate_axis(const MotionVector<W>& v, int k, const W& qd) {
+  const int k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;  // (k, k1, k2) cyclic
+  MotionVector<W> c = MotionVector<W>::Zero();
+  c.angular[k1] = v.angular[k2] * qd;
+  c.angular[k2] = -v.angular[k1] * qd;
+  c.linear[k1] = v.linear[k2] * qd;
+  c.linear[k2] = -v.linear[k1] * qd;
+  return c;
+}
+
+template <class W, class S>
+inline MotionVector<S> round_motion(const MotionVector<W>& m) {
+  return {m.angular.template cast<S>(), m.linear.template cast<S>()};
+}
+
+/// The residual's outward pass over what does not depend on x (RBDA Table 5.1): ^iX_λ,
+/// v_i = X v_λ + S q̇, c_i = v_i × S q̇ and the bias forces f_i = v_i ×* I v_i (eq. 29 without
+/// I a). With `data`, also stores them rounded to S with Iᴬ_i = I_i, which is ABA's first pass
+/// (aba_velocity_pass) done from the wide values.
+template <class S, class W>
+void wide_velocity_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws, Data<S>* data) {
+  const Model<W>& m = ws.model_wide;
+  const auto& params = wide_parameters(model, ws);
+  ws.v_wide[0] = MotionVector<W>::Zero();
+  for (int i = 1; i < m.nbodies(); ++i) {
+    const Joint<W>& j = m.joints[i];
+    const int lambda = m.parent[i];
+    PluckerTransform<W>& X = ws.X_up_wide[i];
+    MotionVector<W>& v = ws.v_wide[i];
+    wide_up_transform(m, params, i, ws.q_wide.data() + j.idx_q, X);
+    const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
+    if (lambda == 0) {
+      v = vJ;                                                                              // v_i = X v_λ + S q̇
+    } else {
+      apply_wide_into(X, ws.v_wide[lambda], v);
+      v += vJ;
+    }
+    if (j.type == JointType::Revolute && j.axis_kind != AxisKind::General)
+      ws.c_wide[i] = cross_coordinate_axis(v, static_cast<int>(j.axis_kind), ws.qd_wide[j.idx_v]);
+    else
+      ws.c_wide[i] = MotionVector<W>(cross3(v.angular, vJ.angular),
+                                     Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));  // v × S q̇
+    bias_force_wide(params.inertia[i], v, ws.f_wide[i]);                                  // v ×* I v
+    if (data) {
+      data->X_up[i].E = X.E.template cast<S>();
+      data->X_up[i].r = X.r.template cast<S>();
+      data->v[i] = round_motion<W, S>(v);
+      data->c[i] = round_motion<W, S>(ws.c_wide[i]);
+      data->IA[i].assign(model.inertia[i]);
+      data->f[i] = ForceVector<S>(ws.f_wide[i].angular.template cast<S>(), ws.f_wide[i].linear.template cast<S>());
     }
   }
 }
 
-/// r = τ − ID(q, q̇, x) in W (RBDA Table 5.1), keeping the wide transforms for later products.
+/// The rest of r = τ − ID(q, q̇, x) in W: a_i = X a_λ + S x + c_i, f_i += I a_i, then
+/// r = τ − Sᵀ f_i with f_λ += Xᵀ f_i. Keeps the wide transforms for later products.
 template <class S, class W>
-void wide_residual(RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
+void wide_acceleration_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
   const Model<W>& m = ws.model_wide;
-  ws.v_wide[0] = MotionVector<W>::Zero();
+  const auto& params = wide_parameters(model, ws);
   ws.a_wide[0] = MotionVector<W>(Vector3<W>::Zero(), -m.gravity);                 // a_0 = −a_g
   for (int i = 1; i < m.nbodies(); ++i) {
     const Joint<W>& j = m.joints[i];
-    const int lambda = m.parent[i];
-    wide_up_transform(m, i, ws.q_wide.data() + j.idx_q, ws.X_up_wide[i]);
-    const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
-    const MotionVector<W>& v = ws.v_wide[i] = apply_wide(ws.X_up_wide[i], ws.v_wide[lambda]) + vJ;  // v_i = X v_λ + S q̇
-    ws.a_wide[i] = apply_wide(ws.X_up_wide[i], ws.a_wide[lambda]) + joint_motion(j, ws.x_wide.data() + j.idx_v) +
-                   MotionVector<W>(cross3(v.angular, vJ.angular),
-                                   Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));  // + v × S q̇
-    ws.f_wide[i] = inertia_times_wide(m.inertia[i], ws.a_wide[i]) +
-                   force_cross_wide(v, inertia_times_wide(m.inertia[i], v));        // f = I a + v ×* I v (eq. 29)
+    MotionVector<W>& a = ws.a_wide[i];
+    apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], a);
+    a += ws.c_wide[i];
+    if (j.type == JointType::Revolute && j.axis_kind != AxisKind::General)
+      a.angular[static_cast<int>(j.axis_kind)] += ws.x_wide[j.idx_v];               // a_i = X a_λ + c_i + S x
+    else
+      a += joint_motion(j, ws.x_wide.data() + j.idx_v);
+    add_inertia_times_wide(params.inertia[i], a, ws.f_wide[i]);                    // f_i = I a + v ×* I v
   }
   for (int i = m.nbodies() - 1; i >= 1; --i) {
     const Joint<W>& j = m.joints[i];
     joint_project(j, ws.f_wide[i], ws.residual_wide.data() + j.idx_v);              // Sᵀ f_i
-    if (m.parent[i] > 0) ws.f_wide[m.parent[i]] += apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i]);  // f_λ += Xᵀ f
+    if (m.parent[i] > 0) add_apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i], ws.f_wide[m.parent[i]]);  // f_λ += Xᵀ f
   }
   for (int k = 0; k < m.nv; ++k) ws.residual_wide[k] = W(tau[k]) - ws.residual_wide[k];
 }
 
+/// r = τ − ID(q, q̇, x) in W (RBDA Table 5.1), keeping the wide transforms for later products.
+template <class S, class W>
+void wide_residual(const Model<S>& model, RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
+  wide_velocity_pass(model, ws, static_cast<Data<S>*>(nullptr));
+  wide_acceleration_pass(model, ws, tau);
+}
+
 /// r ← r − M δ in W: the RNEA without velocity and gravity (a_i = X a_λ + S δ, f_i = I a_i).
 template <class S, class W>
-void subtract_mass_matrix_product(RefinementWorkspace<S, W>& ws) {
+void subtract_mass_matrix_product(const Model<S>& model, RefinementWorkspace<S, W>& ws) {
   const Model<W>& m = ws.model_wide;
+  const auto& params = wide_parameters(model, ws);
   ws.a_wide[0] = MotionVector<W>::Zero();
   for (int i = 1; i < m.nbodies(); ++i) {
     const Joint<W>& j = m.joints[i];
-    ws.a_wide[i] = apply_wide(ws.X_up_wide[i], ws.a_wide[m.parent[i]]) + joint_motion(j, ws.delta_wide.data() + j.idx_v);
-    ws.f_wide[i] = inertia_times_wide(m.inertia[i], ws.a_wide[i]);
+    apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], ws.a_wide[i]);
+    ws.a_wide[i] += joint_motion(j, ws.delta_wide.data() + j.idx_v);          // a_i = X a_λ + S δ
+    ws.f_wide[i] = ForceVector<W>::Zero();
+    add_inertia_times_wide(params.inertia[i], ws.a_wide[i], ws.f_wide[i]);     // f_i = I a_i
   }
   W column[6];
   for (int i = m.nbodies() - 1; i >= 1; --i) {
     const Joint<W>& j = m.joints[i];
     joint_project(j, ws.f_wide[i], column);
     for (int k = 0; k < j.nv; ++k) ws.residual_wide[j.idx_v + k] -= column[k];
-    if (m.parent[i] > 0) ws.f_wide[m.parent[i]] += apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i]);
+    if (m.parent[i] > 0) add_apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i], ws.f_wide[m.parent[i]]);
   }
 }
 
@@ -285,7 +411,7 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
     if (j.nv == 1) {
       const S d = data.D_inv[i](0, 0) * (ws.u[i][0] - data.U[i].col(0).dot(ap));        // δ = D⁻¹(u − Uᵀ a')
       ws.delta[j.idx_v] = d;
-      ws.a[i] = a_prime + joint_motion(j, &d);
+      ws.a[i] = a_prime + one_dof_motion(j, d);
     } else {
       const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * ap);
       ws.delta.template segment<6>(j.idx_v) = d;
@@ -294,29 +420,20 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
   }
 }
 
-}  // namespace detail
-
-/// q̈ = FD(q, q̇, τ) refined as above. Result in data.qdd (rounded once from the wide iterate);
-/// ws.iterations tells how many corrections were applied. Throws as aba() does.
+/// Corrections x ← x + M⁻¹ r with residuals in W, from the iterate in ws.x_wide and its
+/// residual in ws.residual_wide. `rate` is one solve's relative error ρ ≈ κ(M) ε_S: when zero on
+/// entry, the first correction measures it. Leaves the iterate in ws.x_wide and the number of
+/// corrections in ws.iterations.
 template <class S, class W>
-const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
-                              const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
-                              const ConstVectorRef<S>& tau, int max_iterations = 8) {
+void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws, int max_iterations, S& rate) {
   using std::sqrt;
-  aba(model, data, q, qd, tau);
-  for (int k = 0; k < model.nq; ++k) ws.q_wide[k] = W(q[k]);
-  for (int k = 0; k < model.nv; ++k) {
-    ws.qd_wide[k] = W(qd[k]);
-    ws.x_wide[k] = W(data.qdd[k]);
-  }
-  detail::wide_residual(ws, tau);
   const S eps = Eigen::NumTraits<S>::epsilon();
-  const S eps_ratio = S(Eigen::NumTraits<W>::epsilon() / W(eps));
+  const S eps_ratio = S(Eigen::NumTraits<W>::epsilon() / W(eps));  // ε_W / ε_S
   S previous = std::numeric_limits<S>::infinity();
   ws.iterations = 0;
   for (int it = 0; it < max_iterations; ++it) {
     for (int k = 0; k < model.nv; ++k) ws.residual[k] = S(ws.residual_wide[k]);
-    detail::solve_with_aba_factorisation(model, data, ws);
+    solve_with_aba_factorisation(model, data, ws);
     const S size = ws.delta.norm();
     if (!(size < previous)) break;  // no longer improving (or not finite): keep x_k
     for (int k = 0; k < model.nv; ++k) {
@@ -326,13 +443,77 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
     ++ws.iterations;
     S x_size(0);
     for (int k = 0; k < model.nv; ++k) x_size += S(ws.x_wide[k]) * S(ws.x_wide[k]);
-    if (size <= eps * sqrt(x_size)) break;  // the correction is below the result's resolution
+    x_size = sqrt(x_size);
+    if (it == 0) ws.first_correction = size / x_size;
+    if (rate == S(0)) rate = size / x_size;  // x₀'s relative error ≈ ‖δ₀‖/‖x‖
+    if (size <= eps * x_size) break;         // the correction is below the result's resolution
+    // The next correction, about ρ‖δ‖, would be below the resolution (with a margin of 32 for
+    // ρ measured on one right-hand side), or this one is already at the residual's noise level
+    // (ρ·ε_W/ε_S ‖x‖), so the next could not improve on it.
+    if (rate * size <= eps / S(32) * x_size || size <= rate * eps_ratio * x_size) break;
     previous = size;
     // r_{k+1} = r_k − M δ_k: in W, or in S once ‖δ‖ ≤ (ε_W/ε_S) ‖x‖ makes that as accurate.
-    if (size <= eps_ratio * sqrt(x_size)) detail::subtract_mass_matrix_product_narrow(model, data, ws);
-    else detail::subtract_mass_matrix_product(ws);
+    if (size <= eps_ratio * x_size) subtract_mass_matrix_product_narrow(model, data, ws);
+    else subtract_mass_matrix_product(model, ws);
   }
+}
+
+/// x₀ = ABA(q, q̇, τ) with its first pass taken from the residual's wide velocity pass (the
+/// transforms, velocities and bias forces rounded to S), then r₀ = τ − ID(q, q̇, x₀) in W.
+template <class S, class W>
+void aba_with_wide_residual(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
+                            const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
+  check_aba_inputs(model, q, qd, tau);
+  for (int k = 0; k < model.nq; ++k) ws.q_wide[k] = W(q[k]);
+  for (int k = 0; k < model.nv; ++k) ws.qd_wide[k] = W(qd[k]);
+  wide_velocity_pass(model, ws, &data);
+  aba_inertia_pass(model, data, tau);
+  aba_acceleration_pass(model, data);
+  check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
+  for (int k = 0; k < model.nv; ++k) ws.x_wide[k] = W(data.qdd[k]);
+  wide_acceleration_pass(model, ws, tau);
+}
+
+}  // namespace detail
+
+/// q̈ = FD(q, q̇, τ) refined as above with residuals in W. Result in data.qdd (rounded once from
+/// the wide iterate); ws.iterations tells how many corrections were applied. Throws as aba() does.
+template <class S, class W>
+const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
+                              const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
+                              const ConstVectorRef<S>& tau, int max_iterations = 8) {
+  detail::aba_with_wide_residual(model, data, ws, q, qd, tau);
+  S rate(0);
+  detail::refine(model, data, ws, max_iterations, rate);
   for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(ws.x_wide[k]);
+  return data.qdd;
+}
+
+/// As above, and where the W residual cannot resolve the result to S's rounding (ρ·ε_W/ε_S >
+/// ε_S), the refinement goes on from the W iterate with residuals in F (e.g. Quad from
+/// reference/high_precision.hpp, whose ε_F makes the limit ρ·ε_F/ε_S negligible).
+/// fine.iterations is 0 when the W residual sufficed.
+template <class S, class W, class F>
+const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
+                              RefinementWorkspace<S, F>& fine, const ConstVectorRef<S>& q,
+                              const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau, int max_iterations = 8) {
+  detail::aba_with_wide_residual(model, data, ws, q, qd, tau);
+  S rate(0);
+  detail::refine(model, data, ws, max_iterations, rate);
+  fine.iterations = 0;
+  const S eps = Eigen::NumTraits<S>::epsilon();
+  if (rate * S(Eigen::NumTraits<W>::epsilon() / W(eps)) > eps) {
+    for (int k = 0; k < model.nq; ++k) fine.q_wide[k] = F(q[k]);
+    for (int k = 0; k < model.nv; ++k) {
+      fine.qd_wide[k] = F(qd[k]);
+      fine.x_wide[k] = F(ws.x_wide[k]);  // exact when F is wider than W
+    }
+    detail::wide_residual(model, fine, tau);
+    detail::refine(model, data, fine, max_iterations, rate);
+    for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(fine.x_wide[k]);
+  } else {
+    for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(ws.x_wide[k]);
+  }
   return data.qdd;
 }
 
