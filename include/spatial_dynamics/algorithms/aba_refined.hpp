@@ -284,18 +284,32 @@ void wide_velocity_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws, Da
     PluckerTransform<W>& X = ws.X_up_wide[i];
     MotionVector<W>& v = ws.v_wide[i];
     wide_up_transform(m, params, i, ws.q_wide.data() + j.idx_q, X);
-    const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
-    if (lambda == 0) {
-      v = vJ;                                                                              // v_i = X v_λ + S q̇
+    if (j.type != JointType::Free && j.axis_kind != AxisKind::General) {  // S q̇ = q̇ (e_k ; 0) or (0 ; e_k)
+      const int k = static_cast<int>(j.axis_kind);
+      const W& qd = ws.qd_wide[j.idx_v];
+      if (lambda == 0) {
+        v = MotionVector<W>::Zero();
+      } else {
+        apply_wide_into(X, ws.v_wide[lambda], v);
+      }
+      if (j.type == JointType::Revolute) {
+        v.angular[k] += qd;                                                                // v_i = X v_λ + S q̇
+        ws.c_wide[i] = cross_coordinate_axis(v, k, qd);                                    // c_i = v_i × S q̇
+      } else {
+        v.linear[k] += qd;
+        ws.c_wide[i] = cross_coordinate_axis(MotionVector<W>(Vector3<W>::Zero(), v.angular), k, qd);  // (0 ; ω × e_k q̇)
+      }
     } else {
-      apply_wide_into(X, ws.v_wide[lambda], v);
-      v += vJ;
-    }
-    if (j.type == JointType::Revolute && j.axis_kind != AxisKind::General)
-      ws.c_wide[i] = cross_coordinate_axis(v, static_cast<int>(j.axis_kind), ws.qd_wide[j.idx_v]);
-    else
+      const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
+      if (lambda == 0) {
+        v = vJ;
+      } else {
+        apply_wide_into(X, ws.v_wide[lambda], v);
+        v += vJ;
+      }
       ws.c_wide[i] = MotionVector<W>(cross3(v.angular, vJ.angular),
-                                     Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));  // v × S q̇
+                                     Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));
+    }
     bias_force_wide(params.inertia[i], v, ws.f_wide[i]);                                  // v ×* I v
     if (data) {
       data->X_up[i].E = X.E.template cast<S>();
@@ -318,10 +332,20 @@ void wide_acceleration_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws
   for (int i = 1; i < m.nbodies(); ++i) {
     const Joint<W>& j = m.joints[i];
     MotionVector<W>& a = ws.a_wide[i];
-    apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], a);
-    a += ws.c_wide[i];
+    if (m.parent[i] == 0) {  // X a_0 = (0 ; E(−a_g)): the base does not rotate
+      a.angular = ws.c_wide[i].angular;
+      for (int row = 0; row < 3; ++row)
+        a.linear[row] = ws.c_wide[i].linear[row] - (ws.X_up_wide[i].E(row, 0) * m.gravity[0] +
+                                                    ws.X_up_wide[i].E(row, 1) * m.gravity[1] +
+                                                    ws.X_up_wide[i].E(row, 2) * m.gravity[2]);
+    } else {
+      apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], a);
+      a += ws.c_wide[i];
+    }
     if (j.type == JointType::Revolute && j.axis_kind != AxisKind::General)
       a.angular[static_cast<int>(j.axis_kind)] += ws.x_wide[j.idx_v];               // a_i = X a_λ + c_i + S x
+    else if (j.type == JointType::Prismatic && j.axis_kind != AxisKind::General)
+      a.linear[static_cast<int>(j.axis_kind)] += ws.x_wide[j.idx_v];
     else
       a += joint_motion(j, ws.x_wide.data() + j.idx_v);
     add_inertia_times_wide(params.inertia[i], a, ws.f_wide[i]);                    // f_i = I a + v ×* I v
