@@ -13,6 +13,19 @@
 namespace spatial_dynamics {
 namespace detail {
 
+/// The inward pass from the body forces in data.f: τ_i = Sᵢᵀ f_i (summed over a coupled joint's
+/// bodies), f_λ += ^iX_λᵀ f_i.
+template <class S>
+SD_INLINE void rnea_backward_pass(const Model<S>& model, Data<S>& data) {
+  const bool accumulate = model.has_coupled_joints;
+  if (accumulate) data.tau.setZero();
+  for (int i = model.nbodies() - 1; i >= 1; --i) {
+    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
+    const int lambda = model.parent[i];
+    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
+  }
+}
+
 template <class S>
 const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                             const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
@@ -34,13 +47,7 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
     data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)
     if (f_ext) data.f[i] -= f_ext[i];
   }
-  const bool accumulate = model.has_coupled_joints;
-  if (accumulate) data.tau.setZero();
-  for (int i = model.nbodies() - 1; i >= 1; --i) {
-    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
-    const int lambda = model.parent[i];
-    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
-  }
+  rnea_backward_pass(model, data);
   return data.tau;
 }
 
@@ -55,13 +62,7 @@ const VectorX<S>& gravity_rnea_impl(const Model<S>& model, Data<S>& data, const 
     data.a[i] = data.X_up[i].apply(data.a[model.parent[i]]);                       // a_i = X a_λ
     data.f[i] = model.inertia[i] * data.a[i];                                      // f_i = I a_i
   }
-  const bool accumulate = model.has_coupled_joints;
-  if (accumulate) data.tau.setZero();
-  for (int i = model.nbodies() - 1; i >= 1; --i) {
-    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
-    const int lambda = model.parent[i];
-    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
-  }
+  rnea_backward_pass(model, data);
   return data.tau;
 }
 
