@@ -1,5 +1,6 @@
 // Counts calls of the global operator new in this executable (allocation_counter.cpp replaces
-// it), so that the benchmark can report allocations per call.
+// it), so that the benchmark can report allocations per call and the no-allocation tests can
+// assert none (they compile allocation_counter.cpp in too).
 #pragma once
 
 namespace bench {

@@ -1,42 +1,10 @@
 // No algorithm call allocates: global operator new is counted while the algorithms run.
 #include <gtest/gtest.h>
 
-// The replacement operators below pair malloc/aligned_alloc with free by design.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+#include "allocation_counter.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "test_utils.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  ++g_allocations;
-  const std::size_t a = static_cast<std::size_t>(alignment);
-  if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) { return operator new(size, alignment); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 namespace sd = spatial_dynamics;
 
@@ -57,11 +25,11 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     const int frame = static_cast<int>(model.frames.size()) - 1;
 
     // The counter itself works: a direct call of operator new is counted (and cannot be elided).
-    const long before_sanity = g_allocations;
+    const long before_sanity = bench::allocation_count();
     ::operator delete(::operator new(64));
-    EXPECT_EQ(g_allocations - before_sanity, 1);
+    EXPECT_EQ(bench::allocation_count() - before_sanity, 1);
 
-    const long before = g_allocations;
+    const long before = bench::allocation_count();
     sd::rnea(model, data, q, qd, qdd);
     sd::rnea(model, data, q, qd, qdd, f_ext);
     sd::aba(model, data, q, qd, qdd);
@@ -74,7 +42,7 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::kinetic_energy(model, data, q, qd);
     sd::total_momentum(model, data, q, qd);
     sd::aba_refined(model, data, refinement, q, qd, qdd);
-    EXPECT_EQ(g_allocations - before, 0) << file << (GetParam() ? " (floating base)" : " (fixed base)");
+    EXPECT_EQ(bench::allocation_count() - before, 0) << file << (GetParam() ? " (floating base)" : " (fixed base)");
   }
 }
 
@@ -92,8 +60,8 @@ TEST(NoAllocation, RefinementWithFloat128ResidualsDoesNotAllocate) {
   const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
   const Eigen::VectorXd qd = sd_test::random_vector(model.nv, rng);
   const Eigen::VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng, 1e-4));
-  const long before = g_allocations;
+  const long before = bench::allocation_count();
   sd::aba_refined(model, data, ws, fine, q, qd, tau);
-  EXPECT_EQ(g_allocations - before, 0);
+  EXPECT_EQ(bench::allocation_count() - before, 0);
   EXPECT_GE(fine.iterations, 1);
 }

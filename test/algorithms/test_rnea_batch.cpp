@@ -3,45 +3,14 @@
 // remainders and N = 0, 1; no allocation per call; errors that name the state.
 #include <gtest/gtest.h>
 
-// The replacement operators below pair malloc/aligned_alloc with free by design.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-#include <atomic>
-#include <cstdlib>
 #include <limits>
-#include <new>
 
+#include "allocation_counter.hpp"
 #include "spatial_dynamics/algorithms/rnea_batch.hpp"
 #include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
 #include "synthetic_robots.hpp"
 #include "test_utils.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  ++g_allocations;
-  const std::size_t a = static_cast<std::size_t>(alignment);
-  if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) { return operator new(size, alignment); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 namespace sd = spatial_dynamics;
 using Eigen::MatrixXd;
@@ -161,14 +130,14 @@ TEST(RneaBatch, CallsDoNotAllocate) {
         sd::BatchData<double> batch(*m);
         const Trajectory t(*m, 11, rng);
         MatrixXd tau(m->nv, 11);
-        const long before_sanity = g_allocations;  // the counter works
+        const long before_sanity = bench::allocation_count();  // the counter works
         ::operator delete(::operator new(64));
-        ASSERT_EQ(g_allocations - before_sanity, 1);
-        const long before = g_allocations;
+        ASSERT_EQ(bench::allocation_count() - before_sanity, 1);
+        const long before = bench::allocation_count();
         sd::rnea_batch(*m, batch, t.q, t.qd, t.qdd, tau);
         auto first_three = tau.leftCols(3);
         sd::rnea_batch(*m, batch, t.q.leftCols(3), t.qd.leftCols(3), t.qdd.leftCols(3), first_three);
-        EXPECT_EQ(g_allocations - before, 0) << file << (floating ? " (floating)" : " (fixed)")
+        EXPECT_EQ(bench::allocation_count() - before, 0) << file << (floating ? " (floating)" : " (fixed)")
                                              << (m == &coupled ? ", coupled" : "");
       }
     }
