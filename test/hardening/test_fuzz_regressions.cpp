@@ -12,6 +12,7 @@
 #include "spatial_dynamics/reduction/payload.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
+#include "rejection.hpp"
 #include "test_utils.hpp"
 
 namespace {
@@ -35,22 +36,7 @@ std::string joint_xml(const std::string& name, const std::string& type, const st
 
 std::string robot(const std::string& body) { return "<robot name='r'>" + body + "</robot>"; }
 
-/// The ModelError message of building `xml`; fails the test when it is accepted or throws anything else.
-std::string rejection(const std::string& xml, const sd::ModelBuildOptions& options = {}) {
-  try {
-    sd::build_model_from_urdf_string(xml, options);
-  } catch (const sd::ModelError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected ModelError, got: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "accepted:\n" << xml;
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "'" << (text) << "' lacks '" << (part) << "'"
+using sd_test::rejection;
 
 /// The std::domain_error message of `call`; fails the test when it returns.
 template <class F>

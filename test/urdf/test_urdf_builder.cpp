@@ -14,6 +14,7 @@
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "rejection.hpp"
 #include "test_utils.hpp"
 
 namespace {
@@ -63,22 +64,7 @@ std::string two_link(const std::string& l1_inertial, const std::string& j1_extra
   return robot(link("base") + link("l1", l1_inertial) + joint("j1", "revolute", "base", "l1", j1_extra));
 }
 
-/// The ModelError message of building `xml`; fails the test when nothing (or something else) is thrown.
-std::string rejection(const std::string& xml, const sd::ModelBuildOptions& options = {}) {
-  try {
-    sd::build_model_from_urdf_string(xml, options);
-  } catch (const sd::ModelError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected ModelError, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected ModelError, the model was accepted:\n" << xml;
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) \
-  EXPECT_NE(std::string(text).find(part), std::string::npos) << "'" << (text) << "' lacks '" << (part) << "'"
+using sd_test::rejection;
 
 // ---- independent reference computations ---------------------------------------------------
 
