@@ -12,14 +12,9 @@
 # TARGET: urdf_builder, scene_reduction, service_handlers (default: all three). Needs clang-14 and libclang-rt-14-dev
 # (scripts/install_fuzzing_dependencies.sh installs them).
 set -uo pipefail
-cd "$(dirname "$0")/.."
-export PATH="/usr/bin:$PATH"
-
-fail() {
-  echo "error: $1" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-}
+cd "$(dirname "$0")/.." || exit 1
+# shellcheck source=scripts/test_common.sh
+source scripts/test_common.sh
 
 mode=fuzz
 seconds=600

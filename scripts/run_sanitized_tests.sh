@@ -11,14 +11,9 @@
 # that is how a finding in the node, whose exit code rostest ignores, fails the run.
 # Suppressions (only for code that is not ours, each one explained) are in test/sanitizers/.
 set -uo pipefail
-cd "$(dirname "$0")/.."
-export PATH="/usr/bin:$PATH"
-
-fail() {
-  echo "error: $1" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-}
+cd "$(dirname "$0")/.." || exit 1
+# shellcheck source=scripts/test_common.sh
+source scripts/test_common.sh
 
 kind="${1:-}"
 selection="${2:-all}"

@@ -3,14 +3,9 @@
 # integration tests) and ends with the line "N passed, N failed". Fails when any test fails or
 # when fewer tests ran than test/minimum_test_count says (a silently skipped test target).
 set -uo pipefail
-cd "$(dirname "$0")/.."
-export PATH="/usr/bin:$PATH"
-
-fail() {
-  echo "error: $1" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-}
+cd "$(dirname "$0")/.." || exit 1
+# shellcheck source=scripts/test_common.sh
+source scripts/test_common.sh
 
 bash scripts/install_dependencies.sh || fail "installing dependencies failed"
 bash scripts/build.sh all tests || fail "the build failed"

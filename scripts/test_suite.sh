@@ -12,14 +12,9 @@
 # findings in the node, which rostest does not judge by exit code, count too: one failure each).
 # Shared by scripts/run_tests.sh and scripts/run_sanitized_tests.sh.
 set -uo pipefail
-cd "$(dirname "$0")/.."
-export PATH="/usr/bin:$PATH"
-
-fail() {
-  echo "error: $1" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-}
+cd "$(dirname "$0")/.." || exit 1
+# shellcheck source=scripts/test_common.sh
+source scripts/test_common.sh
 
 build_dir="${1:?usage: test_suite.sh BUILD_DIR [all|unit|rostest] [catkin test targets ...]}"
 selection="${2:-all}"
