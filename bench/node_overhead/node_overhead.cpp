@@ -104,13 +104,17 @@ int main(int argc, char** argv) {
   }
   ros::ServiceClient real = nh.serviceClient<sd::InverseDynamics>(real_name, true);
   ros::ServiceClient empty = nh.serviceClient<sd::InverseDynamics>(empty_name, true);
+  // States a controller would send: positions inside the URDF limits (outside, the answer carries a
+  // warning per joint and is longer than the yardstick's).
   std::mt19937 rng(42);
-  std::uniform_real_distribution<double> uniform(-1.5, 1.5);
+  std::uniform_real_distribution<double> uniform(-1.5, 1.5), unit(0.0, 1.0);
   std::vector<sd::InverseDynamics> requests(64);
   for (auto& srv : requests) {
     srv.request.name = names;
     for (std::size_t j = 0; j < names.size(); ++j) {
-      srv.request.position.push_back(uniform(rng));
+      const auto& limits = model.joints[model.jointBody(names[j])].limits;
+      const double lower = std::max(limits.position_lower, -1.5), upper = std::min(limits.position_upper, 1.5);
+      srv.request.position.push_back(upper > lower ? lower + unit(rng) * (upper - lower) : 0.5 * (lower + upper));
       srv.request.velocity.push_back(uniform(rng));
       srv.request.acceleration.push_back(uniform(rng));
     }

@@ -87,16 +87,18 @@ std::string JointRequestDecoder::decode(const std::string& field, const std::vec
 }
 
 std::string JointRequestDecoder::limitWarnings(const Eigen::VectorXd& q) const {
-  std::ostringstream warnings;
+  std::string warnings;  // stays empty (no formatting, no allocation) when every joint is in range
   for (int i = 0; i < static_cast<int>(names_.size()); ++i) {
     const bool has_range = upper_[i] > lower_[i];  // URDF's lower = upper = 0 means "not given"
     if (has_range && (q[i] < lower_[i] || q[i] > upper_[i])) {
-      if (warnings.tellp() > 0) warnings << "; ";
-      warnings << "warning: joint '" << names_[i] << "' position " << q[i] << " is outside its limits [" << lower_[i]
-               << ", " << upper_[i] << "]";
+      std::ostringstream warning;
+      warning << "warning: joint '" << names_[i] << "' position " << q[i] << " is outside its limits [" << lower_[i]
+              << ", " << upper_[i] << "]";
+      if (!warnings.empty()) warnings += "; ";
+      warnings += warning.str();
     }
   }
-  return warnings.str();
+  return warnings;
 }
 
 }  // namespace spatial_dynamics
