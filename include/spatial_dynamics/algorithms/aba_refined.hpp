@@ -455,6 +455,7 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
   const S eps_ratio = S(Eigen::NumTraits<W>::epsilon() / W(eps));  // ε_W / ε_S
   S previous = std::numeric_limits<S>::infinity();
   ws.iterations = 0;
+  ws.first_correction = S(0);
   for (int it = 0; it < max_iterations; ++it) {
     for (int k = 0; k < model.nv; ++k) ws.residual[k] = S(ws.residual_wide[k]);
     solve_with_aba_factorisation(model, data, ws);
