@@ -105,11 +105,16 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   }
   endpoints_ = std::vector<SceneEndpoints>(scene_configs_.size());
   for (std::size_t k = 0; k < scene_configs_.size(); ++k) advertiseScene(k);
+  bool inline_joint_states = true;
+  private_nh_.param("inline_joint_states", inline_joint_states, inline_joint_states);
   ros::NodeHandle state_nh(nh_);
-  state_nh.setCallbackQueue(&joint_state_queue_);
+  if (inline_joint_states)
+    state_nh.setCallbackQueue(&joint_state_queue_);
+  else
+    state_nh.setCallbackQueue(&joint_state_queue_.fallback());
   joint_states_sub_ = state_nh.subscribe("joint_states", 1000, &DynamicsNode::onJointStates, this,
                                          ros::TransportHints().tcpNoDelay());
-  joint_state_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &joint_state_queue_);
+  joint_state_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &joint_state_queue_.fallback());
   joint_state_spinner_->start();
   services_.push_back(private_nh_.advertiseService("transform_wrench", &DynamicsNode::onTransformWrench, this));
   services_.push_back(private_nh_.advertiseService("reload", &DynamicsNode::onReload, this));
@@ -119,6 +124,13 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
   diagnostics_.add("Dynamics", this, &DynamicsNode::diagnose);
   last_diag_time_ = ros::WallTime::now();
   diagnostics_timer_ = private_nh_.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+}
+
+DynamicsNode::~DynamicsNode() {
+  // Unsubscribing waits for a callback running in roscpp's receiving thread; then the fallback
+  // thread stops. Only then may the members the callback uses go.
+  joint_states_sub_.shutdown();
+  if (joint_state_spinner_) joint_state_spinner_->stop();
 }
 
 void DynamicsNode::readSceneConfigs() {

@@ -28,6 +28,7 @@
 #include "spatial_dynamics/TransformWrench.h"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/reduction/payload.hpp"
+#include "spatial_dynamics/ros/inline_callback_queue.hpp"
 #include "spatial_dynamics/ros/latency_recorder.hpp"
 #include "spatial_dynamics/ros/served_model.hpp"
 #include "spatial_dynamics/ros/service_handlers.hpp"
@@ -48,6 +49,10 @@ struct SceneConfig {
 class DynamicsNode {
  public:
   DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+  /// Stops joint_states first, so that no callback runs while the members it uses are destroyed.
+  ~DynamicsNode();
+  DynamicsNode(const DynamicsNode&) = delete;
+  DynamicsNode& operator=(const DynamicsNode&) = delete;
 
  private:
   struct Counters {
@@ -122,9 +127,11 @@ class DynamicsNode {
   tf2_ros::TransformListener tf_listener_;
   TfFrames tf_frames_{tf_buffer_};
 
-  // joint_states are served by a thread of their own, so that a burst of service calls never
-  // delays (or, through a full queue, drops) a joint state and its computed torques.
-  ros::CallbackQueue joint_state_queue_;
+  // joint_states never wait behind service calls: by default (~inline_joint_states) each message
+  // is handled at once in roscpp's receiving thread; otherwise, or when that is busy, by a thread of
+  // their own, so that a burst of service calls never delays (or, through a full queue, drops) a
+  // joint state and its computed torques.
+  InlineCallbackQueue joint_state_queue_;
   ros::Subscriber joint_states_sub_;
   std::unique_ptr<ros::AsyncSpinner> joint_state_spinner_;
   std::vector<ros::ServiceServer> services_;
