@@ -41,9 +41,16 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
-    const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
-    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;              // v_i = X v_λ + S q̇
-    data.c[i] = cross(data.v[i], vJ);                                           // c_i = v_i × S q̇
+    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);
+    if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
+      const S qd_i = qd[j.idx_v];
+      add_one_dof_motion(j, qd_i, data.v[i]);                                   // v_i = X v_λ + S q̇
+      data.c[i] = cross_one_dof_motion(data.v[i], j, qd_i);                     // c_i = v_i × S q̇
+    } else {
+      const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
+      data.v[i] += vJ;
+      data.c[i] = cross(data.v[i], vJ);
+    }
     data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
     data.f[i] = cross(data.v[i], model.inertia[i] * data.v[i]);                 // pᴬ_i = v ×* I v
     if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext

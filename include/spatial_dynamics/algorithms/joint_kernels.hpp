@@ -35,6 +35,28 @@ SD_INLINE Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
   }
 }
 
+/// x × (k a): two products for a coordinate axis (x × e_x = (0, x_z, −x_y), cyclic).
+template <class S>
+SD_INLINE Vector3<S> cross_axis(const Joint<S>& j, const Vector3<S>& x, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return Vector3<S>(S(0), x.z() * k, -(x.y() * k));
+    case AxisKind::Y: return Vector3<S>(-(x.z() * k), S(0), x.x() * k);
+    case AxisKind::Z: return Vector3<S>(x.y() * k, -(x.x() * k), S(0));
+    default: return x.cross(j.axis * k);
+  }
+}
+
+/// x += k a.
+template <class S>
+SD_INLINE void add_along_axis(const Joint<S>& j, Vector3<S>& x, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: x.x() += k; return;
+    case AxisKind::Y: x.y() += k; return;
+    case AxisKind::Z: x.z() += k; return;
+    default: x += j.axis * k; return;
+  }
+}
+
 /// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
 /// for a coordinate rotation about the remaining axis.
 template <class S>
@@ -107,6 +129,20 @@ template <class S>
 SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
   if (j.type == JointType::Revolute) return {detail::scaled_axis(j, v), Vector3<S>::Zero()};
   return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
+}
+
+/// m += S x for a 1-DoF joint.
+template <class S>
+SD_INLINE void add_one_dof_motion(const Joint<S>& j, const S& x, MotionVector<S>& m) {
+  detail::add_along_axis(j, j.type == JointType::Revolute ? m.angular : m.linear, x);
+}
+
+/// v × S q̇ for a 1-DoF joint (eq. 17 with S q̇ = (q̇ a; 0) or (0; q̇ a)): (ω × q̇a ; v_O × q̇a) for a
+/// revolute joint, (0 ; ω × q̇a) for a prismatic one.
+template <class S>
+SD_INLINE MotionVector<S> cross_one_dof_motion(const MotionVector<S>& v, const Joint<S>& j, const S& qd) {
+  if (j.type == JointType::Revolute) return {detail::cross_axis(j, v.angular, qd), detail::cross_axis(j, v.linear, qd)};
+  return {Vector3<S>::Zero(), detail::cross_axis(j, v.angular, qd)};
 }
 
 /// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.

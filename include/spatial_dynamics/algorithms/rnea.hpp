@@ -39,10 +39,21 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
     body_up_transform(model, i, q.data(), data.X_up[i]);
-    const MotionVector<S> vJ = body_joint_motion(j, qd.data());                    // S q̇
-    data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                           // v_i = X v_λ + S q̇
-    data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(j, qdd.data()) +
-                cross(data.v[i], vJ);                                              // a_i = X a_λ + S q̈ + v_i × S q̇
+    if (j.nv == 1) {  // S q̇ and S q̈ have one axis: no 6-vector products with zeros
+      const S k = coupling_multiplier(j);                                          // q̇ = k q̇_master
+      const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
+      MotionVector<S>& v = data.v[i];
+      MotionVector<S>& a = data.a[i];
+      v = data.X_up[i].apply(data.v[lambda]);
+      add_one_dof_motion(j, qd_i, v);                                              // v_i = X v_λ + S q̇
+      a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i);   // a_i = X a_λ + v_i × S q̇
+      add_one_dof_motion(j, qdd_i, a);                                             //       + S q̈
+    } else {
+      const MotionVector<S> vJ = body_joint_motion(j, qd.data());                  // S q̇
+      data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                         // v_i = X v_λ + S q̇
+      data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(j, qdd.data()) +
+                  cross(data.v[i], vJ);                                            // a_i = X a_λ + S q̈ + v_i × S q̇
+    }
     const ForceVector<S> Iv = model.inertia[i] * data.v[i];
     data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)
     if (f_ext) data.f[i] -= f_ext[i];
