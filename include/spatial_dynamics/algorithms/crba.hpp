@@ -10,9 +10,100 @@
 
 namespace spatial_dynamics {
 
+namespace detail {
+
+/// Writes M(r, c) and M(c, r) of two distinct coordinates; with coupled mimic joints
+/// (M = Gᵀ M_independent G) every entry accumulates k_i k_j Sᵢᵀ F instead.
+template <class S>
+SD_INLINE void write_mass_pair(const Model<S>& model, Data<S>& data, int r, int c, const S& value) {
+  if (model.has_coupled_joints) {
+    data.M(r, c) += value;
+    data.M(c, r) += value;
+  } else {
+    data.M(r, c) = value;
+    data.M(c, r) = value;
+  }
+}
+
+/// Body poses ^iX_0 = ^iX_λ ^λX_0 and each 1-DoF joint's axis in base coordinates, Eᵀ a.
+template <class S>
+void base_poses_and_axes(const Model<S>& model, Data<S>& data) {
+  data.X_base[0] = PluckerTransform<S>::Identity();
+  for (int i = 1; i < model.nbodies(); ++i) {
+    data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
+    const Joint<S>& j = model.joints[i];
+    if (j.nv != 1) continue;
+    switch (j.axis_kind) {
+      case AxisKind::X: data.axis_base[i] = data.X_base[i].E.row(0).transpose(); break;
+      case AxisKind::Y: data.axis_base[i] = data.X_base[i].E.row(1).transpose(); break;
+      case AxisKind::Z: data.axis_base[i] = data.X_base[i].E.row(2).transpose(); break;
+      default: data.axis_base[i] = data.X_base[i].E.transpose() * j.axis; break;
+    }
+  }
+}
+
+/// M_ji = S_jᵀ F for every ancestor j of body i, F = Iᶜ_i S_i (column `col`, coupling k_i) in
+/// body i's coordinates, carried by one force transform per ancestor: F = ^jX_λᵀ F.
+template <class S>
+SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, int i, ForceVector<S> F, int col,
+                                         const S& ki) {
+  S column[6];
+  for (int j = i; model.parent[j] > 0;) {
+    F = data.X_up[j].applyInverse(F);                                           // F = ^jX_λᵀ F
+    j = model.parent[j];
+    const Joint<S>& jj = model.joints[j];
+    joint_project(jj, F, column);                                               // M_ji = S_jᵀ F
+    const S kk = ki * coupling_multiplier(jj);
+    for (int l = 0; l < jj.nv; ++l) write_mass_pair(model, data, jj.idx_v + l, col, kk * column[l]);
+  }
+}
+
+/// The same from base coordinates (data.X_base, data.axis_base filled): F once into base
+/// orientation about body i's origin p_i, then for a revolute ancestor j M_ji = a_j · n_j with the
+/// moment n_j = n + f × (p_j − p_i) about its origin, for a prismatic one M_ji = a_j · f.
+template <class S>
+SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i, const ForceVector<S>& F, int col,
+                                    const S& ki) {
+  const PluckerTransform<S>& X_i = data.X_base[i];
+  const Vector3<S> n_base = X_i.E.transpose() * F.angular;
+  const Vector3<S> f_base = X_i.E.transpose() * F.linear;
+  int j = model.parent[i];
+  if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches
+    for (; j > 0 && model.joints[j].type == JointType::Revolute; j = model.parent[j]) {
+      const S m = data.axis_base[j].dot(n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r)));
+      data.M(model.joints[j].idx_v, col) = m;
+      data.M(col, model.joints[j].idx_v) = m;
+    }
+  }
+  S column[6];
+  for (; j > 0; j = model.parent[j]) {
+    const Joint<S>& jj = model.joints[j];
+    const S kk = ki * coupling_multiplier(jj);
+    if (jj.type == JointType::Prismatic) {
+      write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(f_base));
+      continue;
+    }
+    const Vector3<S> n_j = n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r));
+    if (jj.type == JointType::Revolute) {
+      write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(n_j));
+    } else {  // free joint: S = 1 in body j coordinates
+      const Matrix3<S>& E_j = data.X_base[j].E;
+      joint_project(jj, ForceVector<S>(Vector3<S>(E_j * n_j), Vector3<S>(E_j * f_base)), column);
+      for (int l = 0; l < jj.nv; ++l) write_mass_pair(model, data, jj.idx_v + l, col, kk * column[l]);
+    }
+  }
+}
+
+}  // namespace detail
+
 /// M(q) in data.M. Entries coupling joints on different branches are structural zeros: Data
 /// creates M zeroed and this function never writes them (unless the model has coupled joints,
 /// when M is zeroed and accumulated). A non-finite entry throws std::domain_error naming its column.
+///
+/// The composite inertias and F = Iᶜ_i S_i are formed in body coordinates, as in RBDA. F reaches
+/// the ancestors by one force transform each, or on deep trees (data.crba_in_base_coordinates:
+/// fewer operations per pair, once the poses in the base are known) from base coordinates, which
+/// leaves data.X_base and data.axis_base filled.
 template <class S>
 const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   update_joint_transforms(model, data, q);
@@ -22,38 +113,23 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
     const int lambda = model.parent[i];
     if (lambda > 0) data.Ic[lambda] += data.X_up[i].applyInverse(data.Ic[i]);   // Iᶜ_λ += Xᵀ Iᶜ_i X (eq. 24, 26)
   }
-  // With coupled mimic joints M = Gᵀ M_independent G: every entry accumulates k_i k_j Sᵢᵀ F.
-  const bool accumulate = model.has_coupled_joints;
-  if (accumulate) data.M.setZero();
-  auto write_pair = [&](int r, int c, const S& value) {  // M(r, c) and M(c, r) of two distinct coordinates
-    if (accumulate) {
-      data.M(r, c) += value;
-      data.M(c, r) += value;
-    } else {
-      data.M(r, c) = value;
-      data.M(c, r) = value;
-    }
-  };
+  const bool in_base = data.crba_in_base_coordinates;
+  if (in_base) detail::base_poses_and_axes(model, data);
+  if (model.has_coupled_joints) data.M.setZero();
   S column[6];
   for (int i = 1; i < n; ++i) {
     const Joint<S>& ji = model.joints[i];
     const S ki = coupling_multiplier(ji);
     for (int k = 0; k < ji.nv; ++k) {
       const int col = ji.idx_v + k;
-      ForceVector<S> F = data.Ic[i] * joint_subspace_column(ji, k);              // F = Iᶜ_i S_i
+      const ForceVector<S> F = data.Ic[i] * joint_subspace_column(ji, k);        // F = Iᶜ_i S_i
       joint_project(ji, F, column);                                             // M_ii = Sᵢᵀ F
-      if (accumulate) data.M(col, col) += ki * ki * column[k];
+      if (model.has_coupled_joints) data.M(col, col) += ki * ki * column[k];
       else data.M(col, col) = column[k];
-      for (int l = k + 1; l < ji.nv; ++l) write_pair(ji.idx_v + l, col, column[l]);  // mirrored: exactly symmetric
-      int j = i;
-      while (model.parent[j] > 0) {
-        F = data.X_up[j].applyInverse(F);                                       // F = ^jX_λᵀ F
-        j = model.parent[j];
-        const Joint<S>& jj = model.joints[j];
-        joint_project(jj, F, column);                                           // M_ji = S_jᵀ F
-        const S kk = ki * coupling_multiplier(jj);
-        for (int l = 0; l < jj.nv; ++l) write_pair(jj.idx_v + l, col, kk * column[l]);
-      }
+      for (int l = k + 1; l < ji.nv; ++l) detail::write_mass_pair(model, data, ji.idx_v + l, col, column[l]);  // exactly symmetric
+      if (model.parent[i] == 0) continue;
+      if (in_base) detail::carry_column_in_base(model, data, i, F, col, ki);
+      else detail::carry_column_per_ancestor(model, data, i, F, col, ki);
     }
   }
   detail::check_finite_result(model, "mass matrix: the column", data.M);

@@ -33,6 +33,10 @@ struct Data {
 
   // CRBA.
   std::vector<RigidInertia<S>> Ic;          // composite inertias
+  std::vector<Vector3<S>> axis_base;        // each 1-DoF joint's axis in base coordinates
+  // Whether crba carries the columns to the ancestors in base coordinates: when the bodies have
+  // four or more moving ancestors on average, where that is cheaper than one transform per pair.
+  bool crba_in_base_coordinates = false;
 
   // Results.
   VectorX<S> tau;     // rnea output
@@ -59,12 +63,18 @@ struct Data {
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         Ic(model.nbodies()),
+        axis_base(model.nbodies(), Vector3<S>::Zero()),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
         J(Matrix6X<S>::Zero(6, model.nv)),
         zero_v(VectorX<S>::Zero(model.nv)),
-        llt(model.nv) {}
+        llt(model.nv) {
+    long ancestor_pairs = 0;
+    for (int i = 1; i < model.nbodies(); ++i)
+      for (int j = model.parent[i]; j > 0; j = model.parent[j]) ++ancestor_pairs;
+    crba_in_base_coordinates = ancestor_pairs >= 4L * (model.nbodies() - 1);
+  }
 };
 
 }  // namespace spatial_dynamics
