@@ -65,6 +65,13 @@ class Adapter {
   /// its times are reported per state. result() is then that of state `state`.
   virtual int states_per_call(Algorithm) const { return 1; }
   virtual Eigen::VectorXd result(Algorithm a) = 0;
+  /// result() copied into `out`, the form the benchmark reads: Eigen's dynamic storage is
+  /// allocated and freed on the adapter's side, whose alignment settings may differ
+  /// (native_adapter.hpp).
+  virtual void result_into(Algorithm a, std::vector<double>& out) {
+    const Eigen::VectorXd x = result(a);
+    out.assign(x.data(), x.data() + x.size());
+  }
 };
 
 }  // namespace bench

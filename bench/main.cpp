@@ -3,7 +3,9 @@
 // states, timed per call and checked against the float128 reference. Writes results.csv,
 // results.md, and through plot.py and summary.py benchmark.png and summary.md, into --out DIR.
 //
-//   benchmark [--model PATH]... [--floating] [--quick] [--out DIR]
+//   benchmark [--model PATH]... [--floating] [--quick] [--portable] [--out DIR]
+// Our rows come from a -march=native build of the adapter (native_adapter.hpp) when it is built,
+// or with --portable from this executable's own build (SSE2, like the comparators).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +29,9 @@
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 #include "urdf_text.hpp"
+#ifdef SD_BENCH_WITH_NATIVE
+#include "native_adapter.hpp"
+#endif
 #ifdef SD_BENCH_WITH_KDL
 #include "kdl_adapter.hpp"
 #endif
@@ -54,6 +59,7 @@ struct Settings {
   std::vector<std::string> models;  // --model PATH (repeatable); empty: the default set
   bool floating = false;            // --floating: also run --model files with a free root
   bool quick = false;
+  bool portable = false;            // --portable: our rows from this executable's SSE2 build
   std::string out = "benchmark_results";
   // Derived from quick.
   int states = 1000;                // random states for the errors (and the timing pool)
@@ -224,8 +230,16 @@ struct Loaded {
 
 std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpec& spec, const Settings& settings) {
   std::vector<Loaded> out;
-  out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
-  out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
+#ifdef SD_BENCH_WITH_NATIVE
+  if (!settings.portable) {
+    out.push_back({make_native_spatial_dynamics_adapter(model, false), "spatial_dynamics", ""});
+    out.push_back({make_native_spatial_dynamics_adapter(model, true), "spatial_dynamics", ""});
+  }
+#endif
+  if (out.empty()) {
+    out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
+    out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
+  }
   if (!spec.kept_joints.empty()) return out;  // a reduced scene: spatial_dynamics only
   // Comparators get the URDF without geometry (meshes they would try to open).
   [[maybe_unused]] const std::string text = without_geometry(read_file(spec.path));
@@ -280,6 +294,7 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
     double seconds = 0;  // spent in this row's calls; past settings.error_seconds it takes no more states
   };
   std::map<std::pair<Adapter*, Algorithm>, Tally> tallies;
+  std::vector<double> result;  // one call's result (Adapter::result_into)
   int mass_matrix_states = settings.states;
   const auto ref_start = Clock::now();
   for (int s = 0; s < settings.states; ++s) {
@@ -305,7 +320,8 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
           const auto call_start = Clock::now();
           l.adapter->run(a, s);
           t.seconds += std::chrono::duration<double>(Clock::now() - call_start).count();
-          const Eigen::VectorXd x = l.adapter->result(a);
+          l.adapter->result_into(a, result);
+          const Eigen::Map<const Eigen::VectorXd> x(result.data(), static_cast<Eigen::Index>(result.size()));
           t.errors.push_back(x.allFinite() ? sd::relative_error_to(x, reference.of(a)) : INFINITY);
         } catch (const std::exception& e) {
           t.failure = e.what();
@@ -504,6 +520,15 @@ std::string speed_targets(const std::vector<Row>& rows, const std::vector<ModelS
   return s.str();
 }
 
+/// The flags our rows were measured with.
+std::string our_build_flags(const Settings& settings) {
+#ifdef SD_BENCH_WITH_NATIVE
+  if (!settings.portable) return std::string(native_build_flags()) + " (a shared library of the benchmark's)";
+#endif
+  (void)settings;
+  return std::string(kBuildFlags) + " (the benchmark executable)";
+}
+
 void write_markdown(const std::string& path, const std::vector<Row>& rows, const std::vector<ModelSpec>& specs,
                     const std::vector<std::string>& load_failures, const Settings& settings) {
   std::ostringstream s;
@@ -518,11 +543,12 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
     << "Errors over " << settings.states << " states, except that a row whose calls have taken " << settings.error_seconds
     << " s stops taking states, and the float128 mass matrices get " << settings.mass_matrix_seconds
     << " s per model (the states column). "
-    << "Everything built without -march=native (SSE2, no FMA), like Debian's comparator libraries.\n\n";
+    << "Comparators: Debian's builds (SSE2, no FMA), called from adapters built with " << kBuildFlags << ". "
+    << "spatial_dynamics rows: " << our_build_flags(settings) << ".\n\n";
   s << "## Acceptance (issue: speed-against-error benchmark)\n\n" << acceptance(rows, specs) << "\n";
   s << "## Speed targets (issue: speed)\n\nOur double time over the comparator's, both from this run; the best-peer figures "
-       "are the issue's table, rescaled by KDL's tree RNEA time in this run over the one in that table. Flags: "
-    << kBuildFlags << " for every row.\n\n" << speed_targets(rows, specs) << "\n";
+       "are the issue's table, rescaled by KDL's tree RNEA time in this run over the one in that table. Flags: as "
+       "above.\n\n" << speed_targets(rows, specs) << "\n";
   s << "## Comparators that could not load a model\n\n| library | model | why |\n|---|---|---|\n";
   for (const std::string& f : load_failures) s << "| " << f << " |\n";
   s << "\n## All rows\n\n| model | base | dof | library | scalar | algorithm | method | ns/call median (min–max) | "
@@ -544,7 +570,7 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
 }
 
 int usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--model PATH]... [--floating] [--quick] [--out DIR]\n", argv0);
+  std::fprintf(stderr, "usage: %s [--model PATH]... [--floating] [--quick] [--portable] [--out DIR]\n", argv0);
   return 2;
 }
 
@@ -559,6 +585,7 @@ int main(int argc, char** argv) {
     if (arg == "--model" && i + 1 < argc) settings.models.push_back(argv[++i]);
     else if (arg == "--out" && i + 1 < argc) settings.out = argv[++i];
     else if (arg == "--quick") settings.quick = true;
+    else if (arg == "--portable") settings.portable = true;
     else if (arg == "--floating") settings.floating = true;
     else return usage(argv[0]);
   }
