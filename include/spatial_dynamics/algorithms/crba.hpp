@@ -67,10 +67,13 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
   const PluckerTransform<S>& X_i = data.X_base[i];
   const Vector3<S> n_base = X_i.E.transpose() * F.angular;
   const Vector3<S> f_base = X_i.E.transpose() * F.linear;
+  auto moment_about = [&](int j) -> Vector3<S> {  // n_j = n + f × (p_j − p_i)
+    return n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r));
+  };
   int j = model.parent[i];
   if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches
     for (; j > 0 && model.joints[j].type == JointType::Revolute; j = model.parent[j]) {
-      const S m = data.axis_base[j].dot(n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r)));
+      const S m = data.axis_base[j].dot(moment_about(j));
       data.M(model.joints[j].idx_v, col) = m;
       data.M(col, model.joints[j].idx_v) = m;
     }
@@ -83,7 +86,7 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
       write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(f_base));
       continue;
     }
-    const Vector3<S> n_j = n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r));
+    const Vector3<S> n_j = moment_about(j);
     if (jj.type == JointType::Revolute) {
       write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(n_j));
     } else {  // free joint: S = 1 in body j coordinates
