@@ -37,10 +37,11 @@ SD_INLINE void check_aba_inputs(const Model<S>& model, const ConstVectorRef<S>& 
 template <class S>
 SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                  const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext) {
+  joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
-    joint_up_transform(model, i, q.data() + j.idx_q, data.X_up[i]);
+    body_up_transform(model, data, i, q.data(), data.X_up[i]);
     data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);
     if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
       const S qd_i = qd[j.idx_v];

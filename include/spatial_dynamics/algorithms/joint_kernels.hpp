@@ -3,11 +3,15 @@
 // 3×3 matrices; axis-aligned projections read one component instead of a dot product.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
+#include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/lane_trigonometry.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 
 namespace spatial_dynamics {
@@ -57,6 +61,16 @@ SD_INLINE void add_along_axis(const Joint<S>& j, Vector3<S>& x, const S& k) {
   }
 }
 
+/// sin θ and cos θ of one angle: the batched routine on one lane (lane_trigonometry.hpp, within
+/// 1 ulp for double and |θ| ≤ 1e5); other scalars and larger angles take std::sin and std::cos.
+template <class S>
+SD_INLINE void joint_sin_cos(const S& angle, S& s, S& c) {
+  Lanes<S, 1> sine, cosine;
+  sincos_lanes(Lanes<S, 1>::Constant(angle), sine, cosine);
+  s = sine[0];
+  c = cosine[0];
+}
+
 /// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
 /// for a coordinate rotation about the remaining axis.
 template <class S>
@@ -95,25 +109,31 @@ void free_joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTr
   X.r = Xt.r + Xt.E.transpose() * p;
 }
 
+/// ^iX_λ(i) = X_J(θ) X_tree(i) of a revolute joint from s = sin θ and c = cos θ (RBDA Table 4.1).
+template <class S>
+SD_INLINE void revolute_up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const S& s, const S& c,
+                                     PluckerTransform<S>& X) {
+  X.r = Xt.r;
+  X.E = Xt.E;
+  switch (j.axis_kind) {
+    case AxisKind::X: detail::rotate_rows(X.E, 1, 2, c, s); break;
+    case AxisKind::Y: detail::rotate_rows(X.E, 2, 0, c, s); break;
+    case AxisKind::Z: detail::rotate_rows(X.E, 0, 1, c, s); break;
+    default: detail::rotate_about_axis(X.E, j.axis, c, s); break;
+  }
+}
+
 /// ^iX_λ(i) = X_J(q_i) X_tree(i)   (RBDA Table 4.1 joint models; eq. 4.x composition).
 /// `q` points at the joint's first configuration coordinate.
 template <class S>
 SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
-  using std::cos;
-  using std::sin;
   const Joint<S>& j = model.joints[i];
   const PluckerTransform<S>& Xt = model.X_tree[i];
   switch (j.type) {
     case JointType::Revolute: {
-      const S c = cos(q[0]), s = sin(q[0]);
-      X.r = Xt.r;
-      X.E = Xt.E;
-      switch (j.axis_kind) {
-        case AxisKind::X: detail::rotate_rows(X.E, 1, 2, c, s); break;
-        case AxisKind::Y: detail::rotate_rows(X.E, 2, 0, c, s); break;
-        case AxisKind::Z: detail::rotate_rows(X.E, 0, 1, c, s); break;
-        default: detail::rotate_about_axis(X.E, j.axis, c, s); break;
-      }
+      S s, c;
+      detail::joint_sin_cos(q[0], s, c);
+      revolute_up_transform(j, Xt, s, c, X);
       return;
     }
     case JointType::Prismatic:
@@ -199,15 +219,42 @@ inline Vector6<S> inertia_times_subspace(const Joint<S>& j, const Matrix6<S>& I)
 
 // ---- whole-vector access: handles coupled mimic joints ---------------------------------------
 
-/// ^iX_λ(i) from the whole configuration vector q.
+/// Body i's first joint coordinate: q_i, or k q_master + offset for a coupled joint.
 template <class S>
-SD_INLINE void body_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
+SD_INLINE S joint_coordinate(const Joint<S>& j, const S* q) {
+  return j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
+}
+
+/// sin and cos of every revolute joint's angle into data.joint_sin and data.joint_cos, as many
+/// angles at once as a vector register holds (lane_trigonometry.hpp): no call per joint in the
+/// passes. Scalars without vector lanes take one angle at a time.
+template <class S>
+SD_INLINE void joint_sines_and_cosines(const Model<S>& model, Data<S>& data, const S* q) {
+  constexpr int L = std::is_same<S, double>::value ? kSimdBytes / static_cast<int>(sizeof(S)) : 1;
+  const int count = static_cast<int>(data.revolute_bodies.size());
+  for (int start = 0; start < count; start += L) {
+    const int lanes = std::min(L, count - start);
+    const int* bodies = data.revolute_bodies.data() + start;
+    Lanes<S, L> angle = Lanes<S, L>::Zero(), sine, cosine;
+    for (int l = 0; l < lanes; ++l) angle.set(l, joint_coordinate(model.joints[bodies[l]], q));
+    sincos_lanes(angle, sine, cosine);
+    for (int l = 0; l < lanes; ++l) {
+      data.joint_sin[bodies[l]] = sine[l];
+      data.joint_cos[bodies[l]] = cosine[l];
+    }
+  }
+}
+
+/// ^iX_λ(i) from the whole configuration vector q; a revolute joint's sin and cos are read from
+/// data (joint_sines_and_cosines, called before).
+template <class S>
+SD_INLINE void body_up_transform(const Model<S>& model, const Data<S>& data, int i, const S* q, PluckerTransform<S>& X) {
   const Joint<S>& j = model.joints[i];
-  if (j.coupled) {
-    const S qi = j.mimic.multiplier * q[j.idx_q] + j.mimic.offset;  // q = k q_master + offset
-    joint_up_transform(model, i, &qi, X);
+  if (j.type == JointType::Revolute) {
+    revolute_up_transform(j, model.X_tree[i], data.joint_sin[i], data.joint_cos[i], X);
   } else {
-    joint_up_transform(model, i, q + j.idx_q, X);
+    const S qi = joint_coordinate(j, q);
+    joint_up_transform(model, i, j.coupled ? &qi : q + j.idx_q, X);
   }
 }
 

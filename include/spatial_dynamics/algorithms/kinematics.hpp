@@ -13,7 +13,8 @@ namespace spatial_dynamics {
 template <class S>
 void update_joint_transforms(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   detail::check_length("q", q.size(), model.nq);
-  for (int i = 1; i < model.nbodies(); ++i) body_up_transform(model, i, q.data(), data.X_up[i]);
+  joint_sines_and_cosines(model, data, q.data());
+  for (int i = 1; i < model.nbodies(); ++i) body_up_transform(model, data, i, q.data(), data.X_up[i]);
 }
 
 /// Body poses ^iX_0 = ^iX_λ ^λX_0 and frame poses ^FX_0 = ^FX_B ^BX_0. The pose of body i in

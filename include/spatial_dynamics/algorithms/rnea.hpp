@@ -33,12 +33,13 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   check_length("acceleration", qdd.size(), model.nv);
+  joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
   data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
-    body_up_transform(model, i, q.data(), data.X_up[i]);
+    body_up_transform(model, data, i, q.data(), data.X_up[i]);
     if (j.nv == 1) {  // S q̇ and S q̈ have one axis: no 6-vector products with zeros
       const S k = coupling_multiplier(j);                                          // q̇ = k q̇_master
       const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
@@ -67,9 +68,10 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
 template <class S>
 const VectorX<S>& gravity_rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   check_length("q", q.size(), model.nq);
+  joint_sines_and_cosines(model, data, q.data());
   data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
-    body_up_transform(model, i, q.data(), data.X_up[i]);
+    body_up_transform(model, data, i, q.data(), data.X_up[i]);
     data.a[i] = data.X_up[i].apply(data.a[model.parent[i]]);                       // a_i = X a_λ
     data.f[i] = model.inertia[i] * data.a[i];                                      // f_i = I a_i
   }

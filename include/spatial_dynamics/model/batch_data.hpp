@@ -12,15 +12,6 @@
 
 namespace spatial_dynamics {
 
-/// Bytes of the widest vector register the compiler was allowed to use.
-#if defined(__AVX512F__)
-constexpr int kSimdBytes = 64;
-#elif defined(__AVX__)
-constexpr int kSimdBytes = 32;
-#else
-constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
-#endif
-
 /// States evaluated together by default: as many as fill one vector register (2 doubles with
 /// SSE2, 4 with AVX). More lanes than a register holds measured slower: the lanes no longer fit in
 /// the registers.

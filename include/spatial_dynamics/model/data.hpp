@@ -24,6 +24,10 @@ struct Data {
   std::vector<MotionVector<S>> a;           // body accelerations (bias-free in RNEA, c-free in ABA)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations v_i × S_i q̇_i (ABA)
   std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
+  // Revolute joints: the bodies they move, and sin and cos of each one's angle (entries of other
+  // bodies unused), all computed together before the passes (joint_kernels.hpp).
+  std::vector<int> revolute_bodies;
+  std::vector<S> joint_sin, joint_cos;
 
   // ABA.
   std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
@@ -58,6 +62,8 @@ struct Data {
         a(model.nbodies(), MotionVector<S>::Zero()),
         c(model.nbodies(), MotionVector<S>::Zero()),
         f(model.nbodies(), ForceVector<S>::Zero()),
+        joint_sin(model.nbodies(), S(0)),
+        joint_cos(model.nbodies(), S(1)),
         IA(model.nbodies()),
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
@@ -70,6 +76,8 @@ struct Data {
         J(Matrix6X<S>::Zero(6, model.nv)),
         zero_v(VectorX<S>::Zero(model.nv)),
         llt(model.nv) {
+    for (int i = 1; i < model.nbodies(); ++i)
+      if (model.joints[i].type == JointType::Revolute) revolute_bodies.push_back(i);
     long ancestor_pairs = 0;
     for (int i = 1; i < model.nbodies(); ++i)
       for (int j = model.parent[i]; j > 0; j = model.parent[j]) ++ancestor_pairs;

@@ -24,6 +24,15 @@
 
 namespace spatial_dynamics {
 
+/// Bytes of the widest vector register the compiler was allowed to use.
+#if defined(__AVX512F__)
+constexpr int kSimdBytes = 64;
+#elif defined(__AVX__)
+constexpr int kSimdBytes = 32;
+#else
+constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
+#endif
+
 namespace detail {
 
 /// Whether the compiler's vector extension (GCC, Clang) holds L scalars of type S: float or
