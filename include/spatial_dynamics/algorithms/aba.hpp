@@ -42,14 +42,17 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     body_up_transform(model, data, i, q.data(), data.X_up[i]);
-    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);
-    if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
+    if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
+      data.v[i] = one_dof_motion(j, qd[j.idx_v]);
+      data.c[i] = MotionVector<S>::Zero();
+    } else if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
       const S qd_i = qd[j.idx_v];
+      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);
       add_one_dof_motion(j, qd_i, data.v[i]);                                   // v_i = X v_λ + S q̇
       data.c[i] = cross_one_dof_motion(data.v[i], j, qd_i);                     // c_i = v_i × S q̇
     } else {
       const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
-      data.v[i] += vJ;
+      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;
       data.c[i] = cross(data.v[i], vJ);
     }
     data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
@@ -101,7 +104,10 @@ SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data) {
   data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);             // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
-    const MotionVector<S> a_prime = data.X_up[i].apply(data.a[model.parent[i]]) + data.c[i];
+    const int lambda = model.parent[i];
+    const MotionVector<S> a_prime = lambda == 0  // X a_0 = (0 ; E a_0) for a_0 = (0 ; −a_g)
+                                        ? MotionVector<S>(Vector3<S>::Zero(), data.X_up[i].E * data.a[0].linear) + data.c[i]
+                                        : data.X_up[i].apply(data.a[lambda]) + data.c[i];
     const Vector6<S> ap = a_prime.toVector();
     if (j.nv == 1) {
       const S qdd = data.D_inv[i](0, 0) * (data.u[i][0] - data.U[i].col(0).dot(ap));  // q̈ = D⁻¹(u − Uᵀ a')

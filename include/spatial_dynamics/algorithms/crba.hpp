@@ -47,8 +47,19 @@ void base_poses_and_axes(const Model<S>& model, Data<S>& data) {
 template <class S>
 SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, int i, ForceVector<S> F, int col,
                                          const S& ki) {
+  int j = i;
+  if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches
+    for (int lambda = model.parent[j]; lambda > 0 && model.joints[lambda].type == JointType::Revolute;
+         lambda = model.parent[j]) {
+      F = data.X_up[j].applyInverse(F);                                         // F = ^jX_λᵀ F
+      j = lambda;
+      const S m = detail::along_axis(model.joints[j], F.angular);               // M_ji = S_jᵀ F
+      data.M(model.joints[j].idx_v, col) = m;
+      data.M(col, model.joints[j].idx_v) = m;
+    }
+  }
   S column[6];
-  for (int j = i; model.parent[j] > 0;) {
+  while (model.parent[j] > 0) {
     F = data.X_up[j].applyInverse(F);                                           // F = ^jX_λᵀ F
     j = model.parent[j];
     const Joint<S>& jj = model.joints[j];
@@ -125,7 +136,8 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
     const S ki = coupling_multiplier(ji);
     for (int k = 0; k < ji.nv; ++k) {
       const int col = ji.idx_v + k;
-      const ForceVector<S> F = data.Ic[i] * joint_subspace_column(ji, k);        // F = Iᶜ_i S_i
+      const ForceVector<S> F = ji.nv == 1 ? inertia_times_one_dof_subspace(ji, data.Ic[i])
+                                          : data.Ic[i] * joint_subspace_column(ji, k);  // F = Iᶜ_i S_i
       joint_project(ji, F, column);                                             // M_ii = Sᵢᵀ F
       if (model.has_coupled_joints) data.M(col, col) += ki * ki * column[k];
       else data.M(col, col) = column[k];

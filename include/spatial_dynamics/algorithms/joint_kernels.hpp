@@ -165,6 +165,19 @@ SD_INLINE MotionVector<S> cross_one_dof_motion(const MotionVector<S>& v, const J
   return {Vector3<S>::Zero(), detail::cross_axis(j, v.angular, qd)};
 }
 
+/// I S for a 1-DoF joint from the ten parameters (eq. 25 with v = S): (Ī_O a ; −h × a) for a
+/// revolute joint, (h × a ; m a) for a prismatic one; a coordinate axis reads a column of Ī_O.
+template <class S>
+SD_INLINE ForceVector<S> inertia_times_one_dof_subspace(const Joint<S>& j, const RigidInertia<S>& I) {
+  if (j.type == JointType::Prismatic) return {detail::cross_axis(j, I.first_moment, S(1)), detail::scaled_axis(j, I.mass)};
+  switch (j.axis_kind) {
+    case AxisKind::X: return {I.rotational_inertia.col(0), detail::cross_axis(j, I.first_moment, S(-1))};
+    case AxisKind::Y: return {I.rotational_inertia.col(1), detail::cross_axis(j, I.first_moment, S(-1))};
+    case AxisKind::Z: return {I.rotational_inertia.col(2), detail::cross_axis(j, I.first_moment, S(-1))};
+    default: return {I.rotational_inertia * j.axis, detail::cross_axis(j, I.first_moment, S(-1))};
+  }
+}
+
 /// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.
 template <class S>
 SD_INLINE MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {

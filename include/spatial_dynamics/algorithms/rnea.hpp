@@ -45,9 +45,14 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
       const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
       MotionVector<S>& v = data.v[i];
       MotionVector<S>& a = data.a[i];
-      v = data.X_up[i].apply(data.v[lambda]);
-      add_one_dof_motion(j, qd_i, v);                                              // v_i = X v_λ + S q̇
-      a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i);   // a_i = X a_λ + v_i × S q̇
+      if (lambda == 0) {  // v_0 = 0, a_0 = (0 ; −a_g): v_i = S q̇, v_i × S q̇ = 0, X a_0 = (0 ; E a_0)
+        v = one_dof_motion(j, qd_i);
+        a = MotionVector<S>(Vector3<S>::Zero(), data.X_up[i].E * data.a[0].linear);
+      } else {
+        v = data.X_up[i].apply(data.v[lambda]);
+        add_one_dof_motion(j, qd_i, v);                                            // v_i = X v_λ + S q̇
+        a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i); // a_i = X a_λ + v_i × S q̇
+      }
       add_one_dof_motion(j, qdd_i, a);                                             //       + S q̈
     } else {
       const MotionVector<S> vJ = body_joint_motion(j, qd.data());                  // S q̇
