@@ -8,6 +8,7 @@
 #include <Eigen/Cholesky>
 #include <cstdio>
 
+#include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "test_utils.hpp"
 
 namespace sd = spatial_dynamics;
@@ -227,6 +228,46 @@ TEST(AnalyticPendulum, MatchesClosedForm) {
     for (double qdd : {-1.5, 0.0, 2.0}) {
       const VectorXd tau = sd::rnea(model, data, VectorXd::Constant(1, q), VectorXd::Constant(1, 1.3), VectorXd::Constant(1, qdd));
       EXPECT_NEAR(tau[0], (Ic + m * l * l) * qdd + m * g * l * std::sin(q), 1e-13);
+    }
+  }
+}
+
+// The joints' sin and cos, computed for all revolute joints together before the passes, against
+// the C library: talos's 44 joints span several vector registers; one angle of 1e6 sends its
+// register's angles to the C library; a joint coupled to another (q = k q_master + offset) takes
+// the coupled angle. Then the transforms of every body against one joint at a time.
+TEST(JointSinesAndCosines, EveryRevoluteJointAgainstTheCLibrary) {
+  const std::string link = "<inertial><mass value='1'/><origin xyz='0.1 0.05 0'/><inertia ixx='0.01' ixy='0' ixz='0' "
+                           "iyy='0.02' iyz='0' izz='0.02'/></inertial>";
+  const std::string coupled_urdf =
+      "<robot name='chain'><link name='base'/><link name='a'>" + link + "</link><link name='b'>" + link +
+      "</link><joint name='ja' type='continuous'><parent link='base'/><child link='a'/><axis xyz='0 0 1'/></joint>"
+      "<joint name='jb' type='continuous'><parent link='a'/><child link='b'/><origin xyz='0.3 0 0'/><axis xyz='0 1 0'/>"
+      "<mimic joint='ja' multiplier='-2.5' offset='0.7'/></joint></robot>";
+  std::mt19937 rng(31);
+  for (const sd::Model<double>& model :
+       {sd::build_model_from_urdf_file(sd_test::robot_path("talos.urdf")),
+        sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {
+    sd::Data<double> data(model);
+    for (int s = 0; s < 50; ++s) {
+      VectorXd q = sd_test::random_configuration(model, rng);
+      if (s == 0) q[model.nq - 1] = 1e6;
+      sd::forward_kinematics(model, data, q);
+      int revolute = 0;
+      for (int i = 1; i < model.nbodies(); ++i) {
+        const auto& j = model.joints[i];
+        if (j.type != sd::JointType::Revolute) continue;
+        ++revolute;
+        const double angle = j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
+        EXPECT_NEAR(data.joint_sin[i], std::sin(angle), 4.5e-16) << model.joint_names[i] << " at " << angle;
+        EXPECT_NEAR(data.joint_cos[i], std::cos(angle), 4.5e-16) << model.joint_names[i] << " at " << angle;
+        sd::PluckerTransform<double> X;
+        sd::joint_up_transform(model, i, &angle, X);
+        EXPECT_LE((X.E - data.X_up[i].E).cwiseAbs().maxCoeff(), 1e-15) << model.joint_names[i];
+        EXPECT_EQ(X.r, data.X_up[i].r) << model.joint_names[i];
+      }
+      EXPECT_EQ(revolute, static_cast<int>(data.revolute_bodies.size()));
+      EXPECT_GE(revolute, model.nbodies() == 3 ? 2 : 30);
     }
   }
 }
