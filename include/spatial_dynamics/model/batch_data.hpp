@@ -12,12 +12,6 @@
 
 namespace spatial_dynamics {
 
-/// States evaluated together by default: as many as fill one vector register (2 doubles with
-/// SSE2, 4 with AVX). More lanes than a register holds measured slower: the lanes no longer fit in
-/// the registers.
-template <class S>
-constexpr int kDefaultBatchLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
-
 template <class S, int L = kDefaultBatchLanes<S>>
 struct BatchData {
   static_assert(L >= 1, "a batch has at least one lane");

@@ -33,6 +33,12 @@ constexpr int kSimdBytes = 32;
 constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
 #endif
 
+/// States evaluated together by default: as many as fill one vector register (2 doubles with
+/// SSE2, 4 with AVX, 8 with AVX-512). More lanes than a register holds measured slower: the lanes
+/// no longer fit in the registers.
+template <class S>
+constexpr int kDefaultBatchLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
+
 namespace detail {
 
 /// Whether the compiler's vector extension (GCC, Clang) holds L scalars of type S: float or
