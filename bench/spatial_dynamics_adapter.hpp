@@ -29,7 +29,12 @@ class SpatialDynamicsAdapter : public Adapter {
         return "rnea_batch (" + std::to_string(kBatchStates) + " states per call, " +
                std::to_string(spatial_dynamics::kDefaultBatchLanes<S>) + " lanes; time per state)";
       case Algorithm::Aba: return "aba";
-      case Algorithm::AbaRefined: return "aba_refined (long double residual, float128 where that cannot resolve the result)";
+      case Algorithm::AbaRefined:
+        return std::string("aba_refined (") +
+               (std::is_same<spatial_dynamics::DefaultResidualScalar, spatial_dynamics::DoubleDouble>::value
+                    ? "double-double residual, sin and cos in long double"
+                    : "long double residual") +
+               ", float128 where that cannot resolve the result)";
       case Algorithm::Crba: return "crba";
       case Algorithm::CrbaCholesky: return "crba + nonlinear_effects + Eigen LLT";
       case Algorithm::Gravity: return "gravity_torques";

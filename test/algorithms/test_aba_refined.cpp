@@ -1,8 +1,9 @@
 // Forward dynamics with iterative refinement (aba_refined) against the float128 reference: on
 // every shared robot, fixed and floating base, it reaches the double rounding level, and with the
 // float128 escalation it does so on states whose long double residual cannot (tiny q̈ against
-// large forces) and on an ill-conditioned random chain; a float model refines too; a massless
-// leaf still fails naming the joint. The long double sin and cos are checked against float128.
+// large forces) and on an ill-conditioned random chain; with long double and with double-double
+// residuals; a float model refines too; a massless leaf still fails naming the joint. The long
+// double sin and cos are checked against float128.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -20,19 +21,36 @@ using Eigen::VectorXd;
 
 namespace {
 
-struct Errors {
-  double plain = 0, refined = 0, escalated = 0;  // max relative errors: aba, long double only, with float128
-  double kappa = 0;                              // largest condition number of M met
-  int max_iterations = 0;                        // long double corrections
-  int escalations = 0;                           // calls that went on with float128 residuals
+/// Max relative errors of aba_refined with one wide type, alone and with the float128 escalation.
+struct Refined {
+  double error = 0, escalated = 0;
+  int max_iterations = 0;  // wide corrections
+  int escalations = 0;     // calls that went on with float128 residuals
 };
 
-/// Max relative errors of aba and aba_refined over `states` random states (q̇ ∈ U(−1, 1),
-/// q̈ ∈ U(−s, s) for s = qdd_scale, τ = RNEA(q, q̇, q̈) in double), against ABA in float128 on the
-/// same (exactly converted) inputs.
+struct Errors {
+  double plain = 0;    // aba
+  double kappa = 0;    // largest condition number of M met
+  Refined long_double, double_double;
+};
+
+template <class W>
+void refine_and_measure(const sd::Model<double>& model, sd::Data<double>& data, sd::RefinementWorkspace<double, W>& ws,
+                        sd::RefinementWorkspace<double, sd::Quad>& fine, const VectorXd& q, const VectorXd& qd,
+                        const VectorXd& tau, const sd::VectorX<sd::Quad>& reference, Refined& r) {
+  r.error = std::max(r.error, sd::relative_error_to(sd::aba_refined(model, data, ws, q, qd, tau), reference));
+  r.max_iterations = std::max(r.max_iterations, ws.iterations);
+  r.escalated = std::max(r.escalated, sd::relative_error_to(sd::aba_refined(model, data, ws, fine, q, qd, tau), reference));
+  r.escalations += fine.iterations > 0;
+}
+
+/// Max relative errors of aba and aba_refined (long double and double-double residuals) over
+/// `states` random states (q̇ ∈ U(−1, 1), q̈ ∈ U(−s, s) for s = qdd_scale, τ = RNEA(q, q̇, q̈) in
+/// double), against ABA in float128 on the same (exactly converted) inputs.
 Errors measure(const sd::Model<double>& model, int states, unsigned seed, double qdd_scale = 1.0) {
   sd::Data<double> data(model);
-  sd::RefinementWorkspace<double> ws(model);
+  sd::RefinementWorkspace<double, long double> ws_long_double(model);
+  sd::RefinementWorkspace<double, sd::DoubleDouble> ws_double_double(model);
   sd::RefinementWorkspace<double, sd::Quad> fine(model);
   const sd::Model<sd::Quad> reference_model = model.cast<sd::Quad>();
   sd::Data<sd::Quad> reference_data(reference_model);
@@ -45,16 +63,21 @@ Errors measure(const sd::Model<double>& model, int states, unsigned seed, double
     const sd::VectorX<sd::Quad> reference =
         sd::aba(reference_model, reference_data, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
     e.plain = std::max(e.plain, sd::relative_error_to(sd::aba(model, data, q, qd, tau), reference));
-    e.refined = std::max(e.refined, sd::relative_error_to(sd::aba_refined(model, data, ws, q, qd, tau), reference));
-    e.max_iterations = std::max(e.max_iterations, ws.iterations);
-    e.escalated =
-        std::max(e.escalated, sd::relative_error_to(sd::aba_refined(model, data, ws, fine, q, qd, tau), reference));
-    e.escalations += fine.iterations > 0;
+    refine_and_measure(model, data, ws_long_double, fine, q, qd, tau, reference, e.long_double);
+    refine_and_measure(model, data, ws_double_double, fine, q, qd, tau, reference, e.double_double);
     const Eigen::VectorXd lambda =
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(sd::crba(model, data, q), Eigen::EigenvaluesOnly).eigenvalues();
     e.kappa = std::max(e.kappa, lambda.maxCoeff() / lambda.minCoeff());
   }
   return e;
+}
+
+void print(const char* label, const Errors& e) {
+  std::printf("[%s] plain ABA %.3g, kappa %.2g\n", label, e.plain, e.kappa);
+  for (const auto& [name, r] : {std::pair<const char*, const Refined&>{"long double", e.long_double},
+                                std::pair<const char*, const Refined&>{"double-double", e.double_double}})
+    std::printf("    %-13s residual: refined %.3g (%d corrections at most), with float128 %.3g (%d escalated)\n",
+                name, r.error, r.max_iterations, r.escalated, r.escalations);
 }
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -70,16 +93,17 @@ TEST_P(RefinedRobot, ReachesDoubleRoundingLevel) {
   options.floating_base = floating;
   const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file), options);
   const Errors e = measure(model, 100, 11);
-  std::printf("[%s%s] plain ABA %.3g, refined %.3g (%d corrections at most), with float128 %.3g (%d escalated), "
-              "kappa %.2g\n", file.c_str(), floating ? " floating" : "", e.plain, e.refined, e.max_iterations,
-              e.escalated, e.escalations, e.kappa);
+  print((file + (floating ? " floating" : "")).c_str(), e);
   // The result is rounded once from the converged wide iterate (≤ ε/2 per entry; 4ε allows for
-  // entries of very different size in the norm), and the iteration converges to what the long
-  // double residual resolves: κ(M)·ε_ld relative (5e4 · 1.1e-19 for the floating double pendulum).
-  EXPECT_LE(e.refined, 4 * kEps + e.kappa * kEpsWide) << file;
-  EXPECT_LE(e.refined, e.plain) << file;
-  EXPECT_LE(e.escalated, e.refined) << file;
-  EXPECT_GE(e.max_iterations, 1) << file;
+  // entries of very different size in the norm), and the iteration converges to what the wide
+  // residual resolves: κ(M)·ε_ld relative (5e4 · 1.1e-19 for the floating double pendulum), for
+  // double-double too, whose sines and cosines are long double's.
+  for (const Refined& r : {e.long_double, e.double_double}) {
+    EXPECT_LE(r.error, 4 * kEps + e.kappa * kEpsWide) << file;
+    EXPECT_LE(r.error, e.plain) << file;
+    EXPECT_LE(r.escalated, r.error) << file;
+    EXPECT_GE(r.max_iterations, 1) << file;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedRobots, RefinedRobot,
@@ -94,15 +118,16 @@ TEST(RefinedChain, WinsAtLeastTwoDigitsOnAnIllConditionedChainAndFloat128Reaches
   const sd::Model<double> model =
       sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(200, rng)));
   const Errors e = measure(model, 10, 12);
-  std::printf("[200-body chain] plain ABA %.3g, refined %.3g (%d corrections at most), with float128 %.3g "
-              "(%d escalated)\n", e.plain, e.refined, e.max_iterations, e.escalated, e.escalations);
-  // The limit of the long double residual is about κ ε_ld = κ ε / 2048: at least a factor 100
-  // below plain ABA's κ ε-sized error. That limit is above ε (κ ≈ 1e6 here), so every call goes
-  // on with float128 residuals (ε_F = 1.9e-34), whose limit is far below double rounding.
-  EXPECT_LE(e.refined, 1e-2 * e.plain);
-  EXPECT_GE(e.max_iterations, 1);
-  EXPECT_EQ(e.escalations, 10);
-  EXPECT_LE(e.escalated, 4 * kEps);
+  print("200-body chain", e);
+  // The limit of the wide residual is about κ ε_ld = κ ε / 2048: at least a factor 100 below
+  // plain ABA's κ ε-sized error. That limit is above ε (κ ≈ 1e6 here), so every call goes on
+  // with float128 residuals (ε_F = 1.9e-34), whose limit is far below double rounding.
+  for (const Refined& r : {e.long_double, e.double_double}) {
+    EXPECT_LE(r.error, 1e-2 * e.plain);
+    EXPECT_GE(r.max_iterations, 1);
+    EXPECT_EQ(r.escalations, 10);
+    EXPECT_LE(r.escalated, 4 * kEps);
+  }
 }
 
 TEST(RefinedEscalation, ReachesRoundingWhereTheLongDoubleResidualCannot) {
@@ -110,11 +135,12 @@ TEST(RefinedEscalation, ReachesRoundingWhereTheLongDoubleResidualCannot) {
   // relative error grows a thousandfold, and the long double residual's limit passes ε.
   const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("double_pendulum.urdf"));
   const Errors e = measure(model, 200, 14, 1e-3);
-  std::printf("[double pendulum, q̈ ∈ U(−1e-3, 1e-3)] plain ABA %.3g, refined %.3g, with float128 %.3g "
-              "(%d of 200 escalated)\n", e.plain, e.refined, e.escalated, e.escalations);
-  EXPECT_GT(e.refined, 4 * kEps);  // the case the escalation is for
-  EXPECT_LE(e.escalated, 4 * kEps);
-  EXPECT_GE(e.escalations, 100);
+  print("double pendulum, q̈ ∈ U(−1e-3, 1e-3)", e);
+  for (const Refined& r : {e.long_double, e.double_double}) {
+    EXPECT_GT(r.error, 4 * kEps);  // the case the escalation is for
+    EXPECT_LE(r.escalated, 4 * kEps);
+    EXPECT_GE(r.escalations, 100);
+  }
 }
 
 TEST(WideSinCos, MatchesFloat128) {

@@ -16,7 +16,8 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     options.floating_base = GetParam();
     const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file), options);
     sd::Data<double> data(model);
-    sd::RefinementWorkspace<double> refinement(model);
+    sd::RefinementWorkspace<double, long double> refinement(model);
+    sd::RefinementWorkspace<double, sd::DoubleDouble> refinement_double_double(model);
     std::mt19937 rng(3);
     const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
     const Eigen::VectorXd qd = sd_test::random_vector(model.nv, rng);
@@ -42,6 +43,7 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::kinetic_energy(model, data, q, qd);
     sd::total_momentum(model, data, q, qd);
     sd::aba_refined(model, data, refinement, q, qd, qdd);
+    sd::aba_refined(model, data, refinement_double_double, q, qd, qdd);
     EXPECT_EQ(bench::allocation_count() - before, 0) << file << (GetParam() ? " (floating base)" : " (fixed base)");
   }
 }
@@ -49,12 +51,13 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
 INSTANTIATE_TEST_SUITE_P(Base, NoAllocation, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? std::string("Floating") : std::string("Fixed"); });
 
-TEST(NoAllocation, RefinementWithFloat128ResidualsDoesNotAllocate) {
-  // q̈ a thousand times smaller than the forces: the long double residual cannot resolve the
-  // result, so the call goes on with float128 residuals (checked through fine.iterations).
+template <class W>
+void expect_escalation_without_allocation() {
+  // q̈ ten thousand times smaller than the forces: the wide residual cannot resolve the result,
+  // so the call goes on with float128 residuals (checked through fine.iterations).
   const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("double_pendulum.urdf"));
   sd::Data<double> data(model);
-  sd::RefinementWorkspace<double> ws(model);
+  sd::RefinementWorkspace<double, W> ws(model);
   sd::RefinementWorkspace<double, sd::Quad> fine(model);
   std::mt19937 rng(5);
   const Eigen::VectorXd q = sd_test::random_configuration(model, rng);
@@ -64,4 +67,9 @@ TEST(NoAllocation, RefinementWithFloat128ResidualsDoesNotAllocate) {
   sd::aba_refined(model, data, ws, fine, q, qd, tau);
   EXPECT_EQ(bench::allocation_count() - before, 0);
   EXPECT_GE(fine.iterations, 1);
+}
+
+TEST(NoAllocation, RefinementWithFloat128ResidualsDoesNotAllocate) {
+  expect_escalation_without_allocation<long double>();
+  expect_escalation_without_allocation<sd::DoubleDouble>();
 }

@@ -1,7 +1,8 @@
 // Forward dynamics with mixed-precision iterative refinement (Wilkinson; Higham, "Accuracy and
 // Stability of Numerical Algorithms", §12.1), for ill-conditioned mass matrices:
 //   x₀ = ABA(q, q̇, τ)                                  in S (the model's scalar)
-//   r_k = τ − ID(q, q̇, x_k) = τ − h − M x_k             in W, a wider type (long double)
+//   r_k = τ − ID(q, q̇, x_k) = τ − h − M x_k             in W, a wider type (double-double
+//                                                       or long double: DefaultResidualScalar)
 //   δ_k = M⁻¹ r_k                                       in S, reusing ABA's factorisation
 //   x_{k+1} = x_k + δ_k                                  in W
 // Each solve in S has a relative error of about ρ = κ(M)·ε_S, which the first correction
@@ -9,7 +10,8 @@
 // result (‖δ‖ ≤ ε_S ‖x‖), when the next one, about ρ‖δ‖, would not (Higham eq. 12.7), when
 // the corrections stop shrinking, or after max_iterations. The limit is the residual's
 // accuracy, about ρ·ε_W/ε_S relative instead of ABA's ρ. Where that exceeds ε_S (κ(M) beyond
-// about ε_S/ε_W ≈ 2000 in double and long double), the overload with a second workspace goes
+// about ε_S/ε_W ≈ 2000 in double, ε_W being long double's for both wide types: double-double
+// takes its sines and cosines from long double), the overload with a second workspace goes
 // on with a residual in a finer type F (float128) from the wide iterate: dearer per step, and
 // taken only by those calls.
 // Since ID is linear in q̈, r_{k+1} = r_k − M δ_k: only the first residual needs the velocity
@@ -29,12 +31,18 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/double_double.hpp"
 
 namespace spatial_dynamics {
 
+/// The residual's wide type by default: double-double where the target has a fused multiply-add
+/// (its arithmetic then runs several times faster than long double's x87 code), long double
+/// elsewhere (double-double products without it cost more than x87's).
+using DefaultResidualScalar = std::conditional_t<kFusedMultiplyAdd, DoubleDouble, long double>;
+
 /// Buffers for aba_refined, allocated once per model (like Data, one per thread). Holds the
-/// model in the wider type W; converting double to long double is exact.
-template <class S, class W = long double>
+/// model in the wider type W; converting double to long double or double-double is exact.
+template <class S, class W = DefaultResidualScalar>
 struct RefinementWorkspace {
   Model<W> model_wide;
   // Wide residual: per-body transforms, velocities, accelerations, forces; joint-space vectors.
@@ -42,7 +50,6 @@ struct RefinementWorkspace {
   std::vector<MotionVector<W>> v_wide;
   std::vector<MotionVector<W>> a_wide;
   std::vector<ForceVector<W>> f_wide;
-  std::vector<MotionVector<W>> c_wide;  // velocity-product accelerations v_i × S q̇
   VectorX<W> q_wide, qd_wide;
   VectorX<W> x_wide;         // the refined accelerations x_k
   VectorX<W> residual_wide;  // r_k
@@ -61,7 +68,6 @@ struct RefinementWorkspace {
         v_wide(model.nbodies(), MotionVector<W>::Zero()),
         a_wide(model.nbodies(), MotionVector<W>::Zero()),
         f_wide(model.nbodies(), ForceVector<W>::Zero()),
-        c_wide(model.nbodies(), MotionVector<W>::Zero()),
         q_wide(VectorX<W>::Zero(model.nq)),
         qd_wide(VectorX<W>::Zero(model.nv)),
         x_wide(VectorX<W>::Zero(model.nv)),
@@ -77,14 +83,15 @@ struct RefinementWorkspace {
 namespace detail {
 
 // The wide passes are written coefficient by coefficient, into their destinations: Eigen's
-// generic kernels for a scalar it cannot vectorise (long double) are several times slower, and
-// with x87 arithmetic every temporary vector costs 80-bit stores and loads, dearer than the
-// arithmetic itself. A parameter of scalar P (the model's own double, which long double
-// arithmetic loads exactly and more cheaply than a stored long double) enters as W(p).
+// generic kernels for a scalar it cannot vectorise (long double, double-double) are several
+// times slower, and with x87 arithmetic every temporary vector costs 80-bit stores and loads,
+// dearer than the arithmetic itself. A parameter of scalar P (the model's own double) enters
+// the products as it is: long double arithmetic loads it exactly and more cheaply than a stored
+// long double, and double-double's mixed products skip the cross terms of its zero low part.
 
 template <class P, class W>
 inline Vector3<W> cross3(const Vector3<P>& a, const Vector3<W>& b) {
-  return Vector3<W>(W(a[1]) * b[2] - W(a[2]) * b[1], W(a[2]) * b[0] - W(a[0]) * b[2], W(a[0]) * b[1] - W(a[1]) * b[0]);
+  return Vector3<W>(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
 /// out = X m = (E ω ; E (v − r×ω))   (eq. 11); out must not be m.
 template <class W>
@@ -123,8 +130,8 @@ inline void add_inertia_times_wide(const RigidInertia<P>& I, const MotionVector<
   const Vector3<W>& v = a.linear;
   for (int row = 0; row < 3; ++row) {
     const int r1 = row == 2 ? 0 : row + 1, r2 = row == 0 ? 2 : row - 1;  // (row, r1, r2) cyclic
-    f.angular[row] += W(J(row, 0)) * w[0] + W(J(row, 1)) * w[1] + W(J(row, 2)) * w[2] + (W(h[r1]) * v[r2] - W(h[r2]) * v[r1]);
-    f.linear[row] += W(I.mass) * v[row] - (W(h[r1]) * w[r2] - W(h[r2]) * w[r1]);
+    f.angular[row] += J(row, 0) * w[0] + J(row, 1) * w[1] + J(row, 2) * w[2] + (h[r1] * v[r2] - h[r2] * v[r1]);
+    f.linear[row] += I.mass * v[row] - (h[r1] * w[r2] - h[r2] * w[r1]);
   }
 }
 /// f = v ×* I v = (ω×n + v×p ; ω×p) with (n ; p) = I v   (eqs. 18, 25)
@@ -134,15 +141,15 @@ inline void bias_force_wide(const RigidInertia<P>& I, const MotionVector<W>& vel
   const Vector3<P>& h = I.first_moment;
   const Vector3<W>& w = velocity.angular;
   const Vector3<W>& v = velocity.linear;
-  const W p0 = W(I.mass) * v[0] - (W(h[1]) * w[2] - W(h[2]) * w[1]);
-  const W p1 = W(I.mass) * v[1] - (W(h[2]) * w[0] - W(h[0]) * w[2]);
-  const W p2 = W(I.mass) * v[2] - (W(h[0]) * w[1] - W(h[1]) * w[0]);
+  const W p0 = I.mass * v[0] - (h[1] * w[2] - h[2] * w[1]);
+  const W p1 = I.mass * v[1] - (h[2] * w[0] - h[0] * w[2]);
+  const W p2 = I.mass * v[2] - (h[0] * w[1] - h[1] * w[0]);
   f.linear[0] = w[1] * p2 - w[2] * p1;
   f.linear[1] = w[2] * p0 - w[0] * p2;
   f.linear[2] = w[0] * p1 - w[1] * p0;
-  const W n0 = W(J(0, 0)) * w[0] + W(J(0, 1)) * w[1] + W(J(0, 2)) * w[2] + (W(h[1]) * v[2] - W(h[2]) * v[1]);
-  const W n1 = W(J(1, 0)) * w[0] + W(J(1, 1)) * w[1] + W(J(1, 2)) * w[2] + (W(h[2]) * v[0] - W(h[0]) * v[2]);
-  const W n2 = W(J(2, 0)) * w[0] + W(J(2, 1)) * w[1] + W(J(2, 2)) * w[2] + (W(h[0]) * v[1] - W(h[1]) * v[0]);
+  const W n0 = J(0, 0) * w[0] + J(0, 1) * w[1] + J(0, 2) * w[2] + (h[1] * v[2] - h[2] * v[1]);
+  const W n1 = J(1, 0) * w[0] + J(1, 1) * w[1] + J(1, 2) * w[2] + (h[2] * v[0] - h[0] * v[2]);
+  const W n2 = J(2, 0) * w[0] + J(2, 1) * w[1] + J(2, 2) * w[2] + (h[0] * v[1] - h[1] * v[0]);
   f.angular[0] = (w[1] * n2 - w[2] * n1) + (v[1] * p2 - v[2] * p1);
   f.angular[1] = (w[2] * n0 - w[0] * n2) + (v[2] * p0 - v[0] * p2);
   f.angular[2] = (w[0] * n1 - w[1] * n0) + (v[0] * p1 - v[1] * p0);
@@ -207,6 +214,30 @@ inline void sin_cos_wide(const long double& x, long double& s, long double& c) {
   }
 }
 
+/// Double-double: the long double values above, exact in double-double. The residual's accuracy
+/// is then long double's (residual_epsilon), the rest of its arithmetic being finer.
+inline void sin_cos_wide(const DoubleDouble& x, DoubleDouble& s, DoubleDouble& c) {
+  long double s_wide, c_wide;
+  sin_cos_wide(static_cast<long double>(x), s_wide, c_wide);
+  s = DoubleDouble(s_wide);
+  c = DoubleDouble(c_wide);
+}
+
+/// The relative accuracy ε_W of a residual computed in W: W's rounding, except for double-double,
+/// whose sines and cosines are long double's.
+template <class W>
+W residual_epsilon() {
+  if constexpr (std::is_same<W, DoubleDouble>::value) return W(std::numeric_limits<long double>::epsilon());
+  else return Eigen::NumTraits<W>::epsilon();
+}
+
+/// x in a wider type F, exactly (double-double: the sum of its parts, rounded once in F).
+template <class F, class W>
+F widen(const W& x) {
+  if constexpr (std::is_same<W, DoubleDouble>::value) return F(x.hi) + F(x.lo);
+  else return F(x);
+}
+
 /// ^iX_λ(i) in W, as joint_up_transform computes it, with the products written out; X_tree and
 /// the axis are read from `params` (see times()).
 template <class W, class P>
@@ -224,7 +255,7 @@ inline void wide_up_transform(const Model<W>& model, const Model<P>& params, int
     // Rows (m, n) rotated as rotate_rows does, row l (the axis) copied.
     const int l = static_cast<int>(j.axis_kind), m = l == 2 ? 0 : l + 1, n = l == 0 ? 2 : l - 1;
     for (int k = 0; k < 3; ++k) {
-      const W em(Et(m, k)), en(Et(n, k));
+      const P em = Et(m, k), en = Et(n, k);
       X.E(m, k) = c * em + s * en;
       X.E(n, k) = c * en - s * em;
       X.E(l, k) = W(Et(l, k));
@@ -240,115 +271,74 @@ inline void wide_up_transform(const Model<W>& model, const Model<P>& params, int
   EJ(2, 0) = s * a[1] + t * a[2] * a[0];  EJ(2, 1) = -s * a[0] + t * a[2] * a[1]; EJ(2, 2) = c + t * a[2] * a[2];
   for (int row = 0; row < 3; ++row)
     for (int col = 0; col < 3; ++col)
-      X.E(row, col) = EJ(row, 0) * W(Et(0, col)) + EJ(row, 1) * W(Et(1, col)) + EJ(row, 2) * W(Et(2, col));
+      X.E(row, col) = EJ(row, 0) * Et(0, col) + EJ(row, 1) * Et(1, col) + EJ(row, 2) * Et(2, col);
 }
 
 /// Where the wide passes read the model's parameters: from the model itself when W is a hardware
 /// type (the conversion is exact and free), else from the workspace's converted copy.
 template <class S, class W>
 const auto& wide_parameters(const Model<S>& model, const RefinementWorkspace<S, W>& ws) {
-  if constexpr (std::is_floating_point<W>::value) return model;
+  if constexpr (std::is_floating_point<W>::value || std::is_same<W, DoubleDouble>::value) return model;
   else return ws.model_wide;
 }
 
-/// v × e_k q̇ for a coordinate axis k: (ω × e_k q̇ ; v_O × e_k q̇), where w × e_k has the two
-/// entries w_{k+2}, −w_{k+1} at k+1, k+2.
+/// a += v × e_k q̇ for a coordinate axis k, the velocity-product acceleration of a revolute
+/// joint (ω × e_k q̇ ; v_O × e_k q̇) or, for a prismatic one (S = (0 ; e_k)), (0 ; ω × e_k q̇):
+/// w × e_k has the two entries w_{k+2}, −w_{k+1} at k+1, k+2.
 template <class W>
-inline MotionVector<W> cross_coordinate_axis(const MotionVector<W>& v, int k, const W& qd) {
+inline void add_coordinate_axis_product(const MotionVector<W>& v, int k, const W& qd, bool revolute, MotionVector<W>& a) {
   const int k1 = k == 2 ? 0 : k + 1, k2 = k == 0 ? 2 : k - 1;  // (k, k1, k2) cyclic
-  MotionVector<W> c = MotionVector<W>::Zero();
-  c.angular[k1] = v.angular[k2] * qd;
-  c.angular[k2] = -v.angular[k1] * qd;
-  c.linear[k1] = v.linear[k2] * qd;
-  c.linear[k2] = -v.linear[k1] * qd;
-  return c;
+  if (revolute) {
+    a.angular[k1] += v.angular[k2] * qd;
+    a.angular[k2] -= v.angular[k1] * qd;
+  }
+  const Vector3<W>& moving = revolute ? v.linear : v.angular;
+  a.linear[k1] += moving[k2] * qd;
+  a.linear[k2] -= moving[k1] * qd;
 }
 
-template <class W, class S>
-inline MotionVector<S> round_motion(const MotionVector<W>& m) {
-  return {m.angular.template cast<S>(), m.linear.template cast<S>()};
-}
-
-/// The residual's outward pass over what does not depend on x (RBDA Table 5.1): ^iX_λ,
-/// v_i = X v_λ + S q̇, c_i = v_i × S q̇ and the bias forces f_i = v_i ×* I v_i (eq. 29 without
-/// I a). With `data`, also stores them rounded to S with Iᴬ_i = I_i, which is ABA's first pass
-/// (aba_velocity_pass) done from the wide values.
+/// r = τ − ID(q, q̇, x) in W (RBDA Table 5.1) in one outward pass: ^iX_λ, v_i = X v_λ + S q̇,
+/// a_i = X a_λ + S x + v_i × S q̇ (a_0 = −a_g), f_i = I a_i + v_i ×* I v_i (eq. 29); then inward
+/// r = τ − Sᵀ f_i with f_λ += Xᵀ f_i. Long double values live in memory as 80-bit words, whose
+/// stores and loads cost several times a double's, so every quantity is formed once, in its
+/// destination, and nothing is stored that the inward pass does not read again. Keeps the wide
+/// transforms for the later products (subtract_mass_matrix_product).
 template <class S, class W>
-void wide_velocity_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws, Data<S>* data) {
+void wide_residual(const Model<S>& model, RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
   const Model<W>& m = ws.model_wide;
   const auto& params = wide_parameters(model, ws);
-  ws.v_wide[0] = MotionVector<W>::Zero();
   for (int i = 1; i < m.nbodies(); ++i) {
     const Joint<W>& j = m.joints[i];
     const int lambda = m.parent[i];
     PluckerTransform<W>& X = ws.X_up_wide[i];
     MotionVector<W>& v = ws.v_wide[i];
+    MotionVector<W>& a = ws.a_wide[i];
     wide_up_transform(m, params, i, ws.q_wide.data() + j.idx_q, X);
-    if (j.type != JointType::Free && j.axis_kind != AxisKind::General) {  // S q̇ = q̇ (e_k ; 0) or (0 ; e_k)
+    if (lambda == 0) {  // v_0 = 0, X a_0 = (0 ; E(−a_g)): the base does not rotate
+      v = MotionVector<W>::Zero();
+      a.angular = Vector3<W>::Zero();
+      for (int row = 0; row < 3; ++row)
+        a.linear[row] = -(X.E(row, 0) * m.gravity[0] + X.E(row, 1) * m.gravity[1] + X.E(row, 2) * m.gravity[2]);
+    } else {
+      apply_wide_into(X, ws.v_wide[lambda], v);
+      apply_wide_into(X, ws.a_wide[lambda], a);
+    }
+    if (j.type != JointType::Free && j.axis_kind != AxisKind::General) {  // S = (e_k ; 0) or (0 ; e_k)
       const int k = static_cast<int>(j.axis_kind);
       const W& qd = ws.qd_wide[j.idx_v];
-      if (lambda == 0) {
-        v = MotionVector<W>::Zero();
-      } else {
-        apply_wide_into(X, ws.v_wide[lambda], v);
-      }
-      if (j.type == JointType::Revolute) {
-        v.angular[k] += qd;                                                                // v_i = X v_λ + S q̇
-        ws.c_wide[i] = cross_coordinate_axis(v, k, qd);                                    // c_i = v_i × S q̇
-      } else {
-        v.linear[k] += qd;
-        ws.c_wide[i] = cross_coordinate_axis(MotionVector<W>(Vector3<W>::Zero(), v.angular), k, qd);  // (0 ; ω × e_k q̇)
-      }
+      const bool revolute = j.type == JointType::Revolute;
+      (revolute ? v.angular : v.linear)[k] += qd;                                        // v_i = X v_λ + S q̇
+      add_coordinate_axis_product(v, k, qd, revolute, a);                                // + v_i × S q̇
+      (revolute ? a.angular : a.linear)[k] += ws.x_wide[j.idx_v];                        // + S x
     } else {
       const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
-      if (lambda == 0) {
-        v = vJ;
-      } else {
-        apply_wide_into(X, ws.v_wide[lambda], v);
-        v += vJ;
-      }
-      ws.c_wide[i] = MotionVector<W>(cross3(v.angular, vJ.angular),
-                                     Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));
-    }
-    bias_force_wide(params.inertia[i], v, ws.f_wide[i]);                                  // v ×* I v
-    if (data) {
-      data->X_up[i].E = X.E.template cast<S>();
-      data->X_up[i].r = X.r.template cast<S>();
-      data->v[i] = round_motion<W, S>(v);
-      data->c[i] = round_motion<W, S>(ws.c_wide[i]);
-      data->IA[i].assign(model.inertia[i]);
-      data->f[i] = ForceVector<S>(ws.f_wide[i].angular.template cast<S>(), ws.f_wide[i].linear.template cast<S>());
-    }
-  }
-}
-
-/// The rest of r = τ − ID(q, q̇, x) in W: a_i = X a_λ + S x + c_i, f_i += I a_i, then
-/// r = τ − Sᵀ f_i with f_λ += Xᵀ f_i. Keeps the wide transforms for later products.
-template <class S, class W>
-void wide_acceleration_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
-  const Model<W>& m = ws.model_wide;
-  const auto& params = wide_parameters(model, ws);
-  ws.a_wide[0] = MotionVector<W>(Vector3<W>::Zero(), -m.gravity);                 // a_0 = −a_g
-  for (int i = 1; i < m.nbodies(); ++i) {
-    const Joint<W>& j = m.joints[i];
-    MotionVector<W>& a = ws.a_wide[i];
-    if (m.parent[i] == 0) {  // X a_0 = (0 ; E(−a_g)): the base does not rotate
-      a.angular = ws.c_wide[i].angular;
-      for (int row = 0; row < 3; ++row)
-        a.linear[row] = ws.c_wide[i].linear[row] - (ws.X_up_wide[i].E(row, 0) * m.gravity[0] +
-                                                    ws.X_up_wide[i].E(row, 1) * m.gravity[1] +
-                                                    ws.X_up_wide[i].E(row, 2) * m.gravity[2]);
-    } else {
-      apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], a);
-      a += ws.c_wide[i];
-    }
-    if (j.type == JointType::Revolute && j.axis_kind != AxisKind::General)
-      a.angular[static_cast<int>(j.axis_kind)] += ws.x_wide[j.idx_v];               // a_i = X a_λ + c_i + S x
-    else if (j.type == JointType::Prismatic && j.axis_kind != AxisKind::General)
-      a.linear[static_cast<int>(j.axis_kind)] += ws.x_wide[j.idx_v];
-    else
+      v += vJ;
+      a += MotionVector<W>(cross3(v.angular, vJ.angular),
+                           Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));
       a += joint_motion(j, ws.x_wide.data() + j.idx_v);
-    add_inertia_times_wide(params.inertia[i], a, ws.f_wide[i]);                    // f_i = I a + v ×* I v
+    }
+    bias_force_wide(params.inertia[i], v, ws.f_wide[i]);                                 // v ×* I v
+    add_inertia_times_wide(params.inertia[i], a, ws.f_wide[i]);                          // + I a
   }
   for (int i = m.nbodies() - 1; i >= 1; --i) {
     const Joint<W>& j = m.joints[i];
@@ -356,13 +346,6 @@ void wide_acceleration_pass(const Model<S>& model, RefinementWorkspace<S, W>& ws
     if (m.parent[i] > 0) add_apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i], ws.f_wide[m.parent[i]]);  // f_λ += Xᵀ f
   }
   for (int k = 0; k < m.nv; ++k) ws.residual_wide[k] = W(tau[k]) - ws.residual_wide[k];
-}
-
-/// r = τ − ID(q, q̇, x) in W (RBDA Table 5.1), keeping the wide transforms for later products.
-template <class S, class W>
-void wide_residual(const Model<S>& model, RefinementWorkspace<S, W>& ws, const ConstVectorRef<S>& tau) {
-  wide_velocity_pass(model, ws, static_cast<Data<S>*>(nullptr));
-  wide_acceleration_pass(model, ws, tau);
 }
 
 /// r ← r − M δ in W: the RNEA without velocity and gravity (a_i = X a_λ + S δ, f_i = I a_i).
@@ -452,7 +435,7 @@ template <class S, class W>
 void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws, int max_iterations, S& rate) {
   using std::sqrt;
   const S eps = Eigen::NumTraits<S>::epsilon();
-  const S eps_ratio = S(Eigen::NumTraits<W>::epsilon() / W(eps));  // ε_W / ε_S
+  const S eps_ratio = S(residual_epsilon<W>() / W(eps));  // ε_W / ε_S
   S previous = std::numeric_limits<S>::infinity();
   ws.iterations = 0;
   ws.first_correction = S(0);
@@ -483,20 +466,17 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
   }
 }
 
-/// x₀ = ABA(q, q̇, τ) with its first pass taken from the residual's wide velocity pass (the
-/// transforms, velocities and bias forces rounded to S), then r₀ = τ − ID(q, q̇, x₀) in W.
+/// x₀ = ABA(q, q̇, τ), then r₀ = τ − ID(q, q̇, x₀) in W.
 template <class S, class W>
 void aba_with_wide_residual(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
                             const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
-  check_aba_inputs(model, q, qd, tau);
+  aba(model, data, q, qd, tau);
   for (int k = 0; k < model.nq; ++k) ws.q_wide[k] = W(q[k]);
-  for (int k = 0; k < model.nv; ++k) ws.qd_wide[k] = W(qd[k]);
-  wide_velocity_pass(model, ws, &data);
-  aba_inertia_pass(model, data, tau);
-  aba_acceleration_pass(model, data);
-  check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
-  for (int k = 0; k < model.nv; ++k) ws.x_wide[k] = W(data.qdd[k]);
-  wide_acceleration_pass(model, ws, tau);
+  for (int k = 0; k < model.nv; ++k) {
+    ws.qd_wide[k] = W(qd[k]);
+    ws.x_wide[k] = W(data.qdd[k]);
+  }
+  wide_residual(model, ws, tau);
 }
 
 }  // namespace detail
@@ -527,11 +507,11 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
   detail::refine(model, data, ws, max_iterations, rate);
   fine.iterations = 0;
   const S eps = Eigen::NumTraits<S>::epsilon();
-  if (rate * S(Eigen::NumTraits<W>::epsilon() / W(eps)) > eps) {
+  if (rate * S(detail::residual_epsilon<W>() / W(eps)) > eps) {
     for (int k = 0; k < model.nq; ++k) fine.q_wide[k] = F(q[k]);
     for (int k = 0; k < model.nv; ++k) {
       fine.qd_wide[k] = F(qd[k]);
-      fine.x_wide[k] = F(ws.x_wide[k]);  // exact when F is wider than W
+      fine.x_wide[k] = detail::widen<F>(ws.x_wide[k]);  // exact when F is wider than W
     }
     detail::wide_residual(model, fine, tau);
     detail::refine(model, data, fine, max_iterations, rate);

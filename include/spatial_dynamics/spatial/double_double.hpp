@@ -1,0 +1,165 @@
+// A double-double number: the unevaluated sum hi + lo of two doubles, |lo| ≤ ulp(hi)/2, about
+// 106 significant bits (Dekker, "A floating-point technique for extending the available
+// precision", 1971; the error-free transformations TwoSum (Knuth) and TwoProduct). Its
+// arithmetic stays in the vector registers: where long double's x87 arithmetic moves every
+// operand through 80-bit memory words, these few double operations are several times faster.
+// Used as the wide type of the refinement residual (aba_refined.hpp). Sums and products are
+// rounded to double-double (relative error a few 2^-104); sin and cos only to long double's
+// accuracy (2^-64).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+
+namespace spatial_dynamics {
+
+/// Whether the target has a fused multiply-add: an exact product then takes two instructions
+/// instead of Dekker's seventeen.
+#if defined(__FMA__) || defined(__aarch64__)
+constexpr bool kFusedMultiplyAdd = true;
+#else
+constexpr bool kFusedMultiplyAdd = false;
+#endif
+
+struct DoubleDouble {
+  double hi = 0.0;
+  double lo = 0.0;
+
+  DoubleDouble() = default;
+  DoubleDouble(double x) : hi(x) {}  // NOLINT: exact, implicit like double's own widening
+  DoubleDouble(int x) : hi(x) {}     // NOLINT
+  DoubleDouble(double high, double low) : hi(high), lo(low) {}
+  /// Rounds a long double to the nearest double-double (exact: 64 bits fit in 106).
+  explicit DoubleDouble(long double x) : hi(static_cast<double>(x)), lo(static_cast<double>(x - static_cast<long double>(hi))) {}
+
+  explicit operator double() const { return hi + lo; }
+  explicit operator float() const { return static_cast<float>(hi + lo); }
+  explicit operator long double() const { return static_cast<long double>(hi) + static_cast<long double>(lo); }
+
+  DoubleDouble& operator+=(const DoubleDouble& y);
+  DoubleDouble& operator-=(const DoubleDouble& y);
+  DoubleDouble& operator*=(const DoubleDouble& y);
+  DoubleDouble& operator/=(const DoubleDouble& y);
+};
+
+namespace detail {
+
+/// s + e = a + b exactly, for any a and b (Knuth's TwoSum).
+inline DoubleDouble two_sum(double a, double b) {
+  const double s = a + b;
+  const double bb = s - a;
+  return {s, (a - (s - bb)) + (b - bb)};
+}
+
+/// s + e = a + b exactly, for |a| ≥ |b| or a = 0 (Dekker's FastTwoSum).
+inline DoubleDouble fast_two_sum(double a, double b) {
+  const double s = a + b;
+  return {s, b - (s - a)};
+}
+
+/// p + e = a b exactly (barring underflow): with a fused multiply-add where the target has one,
+/// else by Dekker's splitting of each factor into two 26-bit halves.
+inline DoubleDouble two_product(double a, double b) {
+  const double p = a * b;
+  if constexpr (kFusedMultiplyAdd) return {p, std::fma(a, b, -p)};
+  constexpr double split = 134217729.0;  // 2^27 + 1
+  const double ta = split * a, tb = split * b;
+  const double a_high = ta - (ta - a), b_high = tb - (tb - b);
+  const double a_low = a - a_high, b_low = b - b_high;
+  return {p, ((a_high * b_high - p) + a_high * b_low + a_low * b_high) + a_low * b_low};
+}
+
+}  // namespace detail
+
+inline DoubleDouble operator-(const DoubleDouble& x) { return {-x.hi, -x.lo}; }
+
+/// x + y: TwoSum of the high parts, the low parts added to its error. Not renormalised: the
+/// high part then needs one addition, so chains of operations run at double's latency.
+inline DoubleDouble operator+(const DoubleDouble& x, const DoubleDouble& y) {
+  const DoubleDouble s = detail::two_sum(x.hi, y.hi);
+  return {s.hi, s.lo + (x.lo + y.lo)};
+}
+inline DoubleDouble operator-(const DoubleDouble& x, const DoubleDouble& y) { return x + (-y); }
+
+/// x y: TwoProduct of the high parts plus the cross terms (lo·lo is below the result's precision).
+inline DoubleDouble operator*(const DoubleDouble& x, const DoubleDouble& y) {
+  const DoubleDouble p = detail::two_product(x.hi, y.hi);
+  return {p.hi, p.lo + (x.hi * y.lo + x.lo * y.hi)};
+}
+
+// With a double operand (a model parameter), its missing low part saves the cross terms.
+inline DoubleDouble operator*(double a, const DoubleDouble& y) {
+  const DoubleDouble p = detail::two_product(a, y.hi);
+  return {p.hi, p.lo + a * y.lo};
+}
+inline DoubleDouble operator*(const DoubleDouble& x, double b) { return b * x; }
+inline DoubleDouble operator+(const DoubleDouble& x, double b) {
+  const DoubleDouble s = detail::two_sum(x.hi, b);
+  return {s.hi, s.lo + x.lo};
+}
+inline DoubleDouble operator+(double a, const DoubleDouble& y) { return y + a; }
+inline DoubleDouble operator-(const DoubleDouble& x, double b) { return x + (-b); }
+inline DoubleDouble operator-(double a, const DoubleDouble& y) { return (-y) + a; }
+
+/// x / y: the double quotient corrected once by the double-double remainder x − q y (whose
+/// high part alone is not its value: the high parts cancel).
+inline DoubleDouble operator/(const DoubleDouble& x, const DoubleDouble& y) {
+  const double q = x.hi / y.hi;
+  const DoubleDouble remainder = x - q * y;
+  return detail::fast_two_sum(q, (remainder.hi + remainder.lo) / y.hi);
+}
+
+inline DoubleDouble& DoubleDouble::operator+=(const DoubleDouble& y) { return *this = *this + y; }
+inline DoubleDouble& DoubleDouble::operator-=(const DoubleDouble& y) { return *this = *this - y; }
+inline DoubleDouble& DoubleDouble::operator*=(const DoubleDouble& y) { return *this = *this * y; }
+inline DoubleDouble& DoubleDouble::operator/=(const DoubleDouble& y) { return *this = *this / y; }
+
+// Normalised pairs compare as their high parts, ties broken by the low parts.
+inline bool operator==(const DoubleDouble& x, const DoubleDouble& y) { return x.hi == y.hi && x.lo == y.lo; }
+inline bool operator!=(const DoubleDouble& x, const DoubleDouble& y) { return !(x == y); }
+inline bool operator<(const DoubleDouble& x, const DoubleDouble& y) { return x.hi < y.hi || (x.hi == y.hi && x.lo < y.lo); }
+inline bool operator>(const DoubleDouble& x, const DoubleDouble& y) { return y < x; }
+inline bool operator<=(const DoubleDouble& x, const DoubleDouble& y) { return x.hi < y.hi || (x.hi == y.hi && x.lo <= y.lo); }
+inline bool operator>=(const DoubleDouble& x, const DoubleDouble& y) { return y <= x; }
+
+inline DoubleDouble abs(const DoubleDouble& x) { return x.hi < 0.0 || (x.hi == 0.0 && x.lo < 0.0) ? -x : x; }
+inline DoubleDouble abs2(const DoubleDouble& x) { return x * x; }
+inline bool isfinite(const DoubleDouble& x) { return std::isfinite(x.hi) && std::isfinite(x.lo); }
+inline bool isnan(const DoubleDouble& x) { return std::isnan(x.hi) || std::isnan(x.lo); }
+inline bool isinf(const DoubleDouble& x) { return std::isinf(x.hi); }
+
+/// √x: the double root corrected by one Newton step in double-double, s + (x − s²)/(2s).
+inline DoubleDouble sqrt(const DoubleDouble& x) {
+  const double s = std::sqrt(x.hi);
+  if (!(s > 0.0) || !std::isfinite(s)) return DoubleDouble(s);
+  const DoubleDouble square = detail::two_product(s, s);
+  return detail::fast_two_sum(s, ((x.hi - square.hi) - square.lo + x.lo) / (2.0 * s));
+}
+
+inline DoubleDouble sin(const DoubleDouble& x) { return DoubleDouble(std::sin(static_cast<long double>(x))); }
+inline DoubleDouble cos(const DoubleDouble& x) { return DoubleDouble(std::cos(static_cast<long double>(x))); }
+
+}  // namespace spatial_dynamics
+
+namespace Eigen {
+
+template <>
+struct NumTraits<spatial_dynamics::DoubleDouble> : GenericNumTraits<double> {
+  using Real = spatial_dynamics::DoubleDouble;
+  using NonInteger = spatial_dynamics::DoubleDouble;
+  using Nested = spatial_dynamics::DoubleDouble;
+  using Literal = spatial_dynamics::DoubleDouble;
+  enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 0, ReadCost = 2, AddCost = 10, MulCost = 8 };
+  static Real epsilon() { return Real(0x1p-104); }  // 2^-104: the relative rounding of a sum or product
+  static Real dummy_precision() { return Real(1e-28); }
+  static Real highest() { return Real(std::numeric_limits<double>::max()); }
+  static Real lowest() { return Real(std::numeric_limits<double>::lowest()); }
+  static Real infinity() { return Real(std::numeric_limits<double>::infinity()); }
+  static Real quiet_NaN() { return Real(std::numeric_limits<double>::quiet_NaN()); }
+  static int digits10() { return 31; }
+  static int digits() { return 106; }
+};
+
+}  // namespace Eigen
