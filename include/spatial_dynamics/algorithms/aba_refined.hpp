@@ -384,7 +384,8 @@ void subtract_mass_matrix_product_narrow(const Model<S>& model, const Data<S>& d
 }
 
 /// δ = M⁻¹ r by the factorisation the last aba() call left in data (U = Iᴬ S, D⁻¹, X_up):
-/// ABA's passes 2 and 3 with no velocity, no gravity and joint forces r (RBDA Table 7.1).
+/// ABA's passes 2 and 3 with no velocity, no gravity and joint forces r (RBDA Table 7.1). The
+/// 1-DoF bodies work on the 3-vector halves, without assembling 6-vectors.
 template <class S, class W>
 void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws) {
   const int n = model.nbodies();
@@ -392,30 +393,35 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
   for (int i = n - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
+    ForceVector<S>& p = ws.p[i];  // pᴬ, turned into pᵃ in place
     if (j.nv == 1) {
-      const S u = ws.residual[j.idx_v] - joint_project(j, ws.p[i].toVector());          // u = r − Sᵀ pᴬ
+      const S u = ws.residual[j.idx_v] - detail::along_axis(j, j.type == JointType::Revolute ? p.angular : p.linear);  // u = r − Sᵀ pᴬ
       ws.u[i][0] = u;
       if (lambda > 0) {
-        const Vector6<S> pa = ws.p[i].toVector() + data.U[i].col(0) * (u * data.D_inv[i](0, 0));  // pᵃ = pᴬ + U D⁻¹ u
-        ws.p[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));                 // pᴬ_λ += Xᵀ pᵃ
+        const S scaled = u * data.D_inv[i](0, 0);
+        p.angular += data.U[i].col(0).template head<3>() * scaled;                    // pᵃ = pᴬ + U D⁻¹ u
+        p.linear += data.U[i].col(0).template tail<3>() * scaled;
+        ws.p[lambda] += data.X_up[i].applyInverse(p);                                 // pᴬ_λ += Xᵀ pᵃ
       }
     } else {
-      ws.u[i] = ws.residual.template segment<6>(j.idx_v) - ws.p[i].toVector();
+      ws.u[i] = ws.residual.template segment<6>(j.idx_v) - p.toVector();
     }
   }
   ws.a[0] = MotionVector<S>::Zero();
   for (int i = 1; i < n; ++i) {
     const Joint<S>& j = model.joints[i];
-    const MotionVector<S> a_prime = data.X_up[i].apply(ws.a[model.parent[i]]);
-    const Vector6<S> ap = a_prime.toVector();
+    MotionVector<S>& a = ws.a[i];
+    a = data.X_up[i].apply(ws.a[model.parent[i]]);                                     // a' = X a_λ
     if (j.nv == 1) {
-      const S d = data.D_inv[i](0, 0) * (ws.u[i][0] - data.U[i].col(0).dot(ap));        // δ = D⁻¹(u − Uᵀ a')
+      const auto U = data.U[i].col(0);
+      const S d = data.D_inv[i](0, 0) *
+                  (ws.u[i][0] - (U.template head<3>().dot(a.angular) + U.template tail<3>().dot(a.linear)));  // δ = D⁻¹(u − Uᵀ a')
       ws.delta[j.idx_v] = d;
-      ws.a[i] = a_prime + one_dof_motion(j, d);
+      add_one_dof_motion(j, d, a);                                                     // a = a' + S δ
     } else {
-      const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * ap);
+      const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * a.toVector());
       ws.delta.template segment<6>(j.idx_v) = d;
-      ws.a[i] = a_prime + MotionVector<S>(d);
+      a = a + MotionVector<S>(d);
     }
   }
 }
