@@ -20,8 +20,9 @@ struct ForceVector {
   static ForceVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
 
   Vector6<S> toVector() const {
-    Vector6<S> f;
-    f << angular, linear;
+    Vector6<S> f;  // block by block: the comma initializer peels alignment at run time
+    f.template head<3>() = angular;
+    f.template tail<3>() = linear;
     return f;
   }
 

@@ -20,8 +20,9 @@ struct MotionVector {
   static MotionVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
 
   Vector6<S> toVector() const {
-    Vector6<S> v;
-    v << angular, linear;
+    Vector6<S> v;  // block by block: the comma initializer peels alignment at run time
+    v.template head<3>() = angular;
+    v.template tail<3>() = linear;
     return v;
   }
 
