@@ -205,12 +205,7 @@ inline void sin_cos_wide(const long double& x, long double& s, long double& c) {
     pc = cos_coefficients[j] + z * pc;  // cos y = Σ (−z)^j/(2j)!
   }
   const long double sy = y * ps;
-  switch (quadrant & 3) {  // x = k π/2 + y
-    case 0: s = sy; c = pc; return;
-    case 1: s = pc; c = -sy; return;
-    case 2: s = -sy; c = -pc; return;
-    default: s = -pc; c = sy; return;
-  }
+  sin_cos_of_quadrant(quadrant, sy, pc, s, c);  // x = k π/2 + y
 }
 
 inline void sin_cos_wide(const DoubleDouble& x, DoubleDouble& s, DoubleDouble& c) { sin_cos(x, s, c); }

@@ -70,6 +70,17 @@ inline DoubleDouble two_product(double a, double b) {
   return {p, ((a_high * b_high - p) + a_high * b_low + a_low * b_high) + a_low * b_low};
 }
 
+/// sin x and cos x for x = k π/2 + y from sin y and cos y: the quarter turns rotate (cos, sin).
+template <class T>
+inline void sin_cos_of_quadrant(long long k, const T& sin_y, const T& cos_y, T& s, T& c) {
+  switch (k & 3) {
+    case 0: s = sin_y; c = cos_y; return;
+    case 1: s = cos_y; c = -sin_y; return;
+    case 2: s = -sin_y; c = -cos_y; return;
+    default: s = -cos_y; c = sin_y; return;
+  }
+}
+
 }  // namespace detail
 
 inline DoubleDouble operator-(const DoubleDouble& x) { return {-x.hi, -x.lo}; }
@@ -170,12 +181,7 @@ inline void sin_cos(const DoubleDouble& x, DoubleDouble& s, DoubleDouble& c) {
   const DoubleDouble sin_y = y + (y * z) * (-inv3 + z * (inv5 + z * (-inv7 + z * sin_tail)));
   const DoubleDouble cos_y = 1.0 + z * (-0.5 + z * (inv4 + z * (-inv6 + z * (inv8 + z * cos_tail))));
   const DoubleDouble sn = detail::fast_two_sum(sin_y.hi, sin_y.lo), cs = detail::fast_two_sum(cos_y.hi, cos_y.lo);
-  switch (static_cast<long long>(k) & 3) {  // x = k π/2 + y
-    case 0: s = sn; c = cs; return;
-    case 1: s = cs; c = -sn; return;
-    case 2: s = -sn; c = -cs; return;
-    default: s = -cs; c = sn; return;
-  }
+  detail::sin_cos_of_quadrant(static_cast<long long>(k), sn, cs, s, c);
 }
 
 inline DoubleDouble sin(const DoubleDouble& x) {
