@@ -106,7 +106,7 @@ SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
     const MotionVector<S> a_prime = lambda == 0  // X a_0 = (0 ; E a_0) for a_0 = (0 ; −a_g)
-                                        ? MotionVector<S>(Vector3<S>::Zero(), data.X_up[i].E * data.a[0].linear) + data.c[i]
+                                        ? data.X_up[i].applyToLinear(data.a[0].linear) + data.c[i]
                                         : data.X_up[i].apply(data.a[lambda]) + data.c[i];
     const Vector6<S> ap = a_prime.toVector();
     if (j.nv == 1) {

@@ -47,7 +47,7 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
       MotionVector<S>& a = data.a[i];
       if (lambda == 0) {  // v_0 = 0, a_0 = (0 ; −a_g): v_i = S q̇, v_i × S q̇ = 0, X a_0 = (0 ; E a_0)
         v = one_dof_motion(j, qd_i);
-        a = MotionVector<S>(Vector3<S>::Zero(), data.X_up[i].E * data.a[0].linear);
+        a = data.X_up[i].applyToLinear(data.a[0].linear);
       } else {
         v = data.X_up[i].apply(data.v[lambda]);
         add_one_dof_motion(j, qd_i, v);                                            // v_i = X v_λ + S q̇
