@@ -144,7 +144,8 @@ TEST(DoubleDouble, SinAndCosMatchFloat128) {
     sd::sin_cos(x, s, c);
     const Quad xq = exact(x);
     const double error = std::max(static_cast<double>(abs(exact(s) - sin(xq))), static_cast<double>(abs(exact(c) - cos(xq))));
-    (std::abs(x.hi) <= 1e5 ? worst_reduced : worst_beyond) = std::max(std::abs(x.hi) <= 1e5 ? worst_reduced : worst_beyond, error);
+    double& worst = std::abs(x.hi) <= 1e5 ? worst_reduced : worst_beyond;
+    worst = std::max(worst, error);
     EXPECT_EQ(exact(sd::sin(x)), exact(s));
     EXPECT_EQ(exact(sd::cos(x)), exact(c));
   }
