@@ -240,6 +240,14 @@ TEST(SpatialAlgebra, InertiaTransformMatchesEquation26) {  // I_B = X* I_A X^-1
     EXPECT_LE(rel(X.applyInverse(I).toMatrix(), X.toMotionMatrix().transpose() * I.toMatrix() * X.toMotionMatrix()),
               1e-13);
     EXPECT_LE(rel(X.applyInverse(X.apply(I)).toMatrix(), I.toMatrix()), 1e-13);
+    // The accumulating form: out += Xᵀ I X, onto another body's inertia.
+    RigidInertia<double> base = r.inertia();
+    base.rotational_inertia = (0.5 * (base.rotational_inertia + base.rotational_inertia.transpose())).eval();
+    RigidInertia<double> sum = base;
+    X.applyInverseAdd(I, sum);
+    EXPECT_LE(rel(sum.toMatrix(), base.toMatrix() + X.toMotionMatrix().transpose() * I.toMatrix() * X.toMotionMatrix()),
+              1e-13);
+    EXPECT_EQ(sum.rotational_inertia, sum.rotational_inertia.transpose());  // symmetric stays exactly symmetric
     // A massless body with rotational inertia only transforms without dividing by its mass.
     const RigidInertia<double> rotor(0.0, Vector3d::Zero(), Matrix3d::Identity());
     EXPECT_TRUE(X.apply(rotor).toMatrix().allFinite());

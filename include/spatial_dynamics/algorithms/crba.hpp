@@ -49,13 +49,20 @@ SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, i
                                          const S& ki) {
   int j = i;
   if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches
-    for (int lambda = model.parent[j]; lambda > 0 && model.joints[lambda].type == JointType::Revolute;
-         lambda = model.parent[j]) {
-      F = data.X_up[j].applyInverse(F);                                         // F = ^jX_λᵀ F
+    // Local pointers: Eigen's vector stores may alias any memory, so members read through
+    // `model` and `data` would be reloaded after each of them.
+    const int* parent = model.parent.data();
+    const Joint<S>* joints = model.joints.data();
+    const PluckerTransform<S>* X_up = data.X_up.data();
+    S* M = data.M.data();
+    const Eigen::Index stride = data.M.outerStride();
+    for (int lambda = parent[j]; lambda > 0 && joints[lambda].type == JointType::Revolute; lambda = parent[j]) {
+      F = X_up[j].applyInverse(F);                                              // F = ^jX_λᵀ F
       j = lambda;
-      const S m = detail::along_axis(model.joints[j], F.angular);               // M_ji = S_jᵀ F
-      data.M(model.joints[j].idx_v, col) = m;
-      data.M(col, model.joints[j].idx_v) = m;
+      const S m = detail::along_axis(joints[j], F.angular);                     // M_ji = S_jᵀ F
+      const Eigen::Index row = joints[j].idx_v;
+      M[row + col * stride] = m;
+      M[col + row * stride] = m;
     }
   }
   S column[6];
@@ -125,7 +132,7 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
   for (int i = 1; i < n; ++i) data.Ic[i] = model.inertia[i];
   for (int i = n - 1; i >= 1; --i) {
     const int lambda = model.parent[i];
-    if (lambda > 0) data.Ic[lambda] += data.X_up[i].applyInverse(data.Ic[i]);   // Iᶜ_λ += Xᵀ Iᶜ_i X (eq. 24, 26)
+    if (lambda > 0) data.X_up[i].applyInverseAdd(data.Ic[i], data.Ic[lambda]);    // Iᶜ_λ += Xᵀ Iᶜ_i X (eq. 24, 26)
   }
   const bool in_base = data.crba_in_base_coordinates;
   if (in_base) detail::base_poses_and_axes(model, data);

@@ -71,6 +71,31 @@ struct PluckerTransform {
     return RigidInertia<S>(I.mass, h + I.mass * r, shift_rotational_inertia(rotated, h, I.mass, r, S(-1)));
   }
 
+  /// out += Xᵀ I X (the CRBA's composite inertias, eq. 26 inverted), with the same terms as
+  /// applyInverse: h' = Eᵀ h, Ī' = Eᵀ Ī E (lower triangle, from T = Ī E), then the shift by r
+  /// with σ = −1 and h_A = h' + m r. Written out so that no 3×3 temporary reaches memory.
+  SD_INLINE void applyInverseAdd(const RigidInertia<S>& I, RigidInertia<S>& out) const {
+    const Matrix3<S>& Ib = I.rotational_inertia;
+    const S m = I.mass;
+    S h[3], mr[3], T[3][3];  // T[c] = column c of Ī E
+    for (int c = 0; c < 3; ++c) {
+      h[c] = E(0, c) * I.first_moment[0] + E(1, c) * I.first_moment[1] + E(2, c) * I.first_moment[2];
+      mr[c] = m * r[c];
+      for (int k = 0; k < 3; ++k) T[c][k] = Ib(k, 0) * E(0, c) + Ib(k, 1) * E(1, c) + Ib(k, 2) * E(2, c);
+    }
+    const S diagonal = (mr[0] * r[0] + mr[1] * r[1] + mr[2] * r[2]) + S(2) * (h[0] * r[0] + h[1] * r[1] + h[2] * r[2]);
+    Matrix3<S>& Io = out.rotational_inertia;
+    for (int c = 0; c < 3; ++c)
+      for (int k = c; k < 3; ++k) {
+        const S rotated = E(0, k) * T[c][0] + E(1, k) * T[c][1] + E(2, k) * T[c][2];  // (Eᵀ Ī E)(k, c)
+        const S v = rotated - r[k] * h[c] - h[k] * r[c] - mr[k] * r[c] + (k == c ? diagonal : S(0));
+        Io(k, c) += v;
+        if (k != c) Io(c, k) += v;
+      }
+    for (int c = 0; c < 3; ++c) out.first_moment[c] += h[c] + mr[c];
+    out.mass += m;
+  }
+
   /// Ī + σ(h×r× + r×h×) − m r×r× = Ī + σ(r hᵀ + h rᵀ − 2(h·r)1) − m(r rᵀ − (r·r)1), symmetric.
   static Matrix3<S> shift_rotational_inertia(const Matrix3<S>& I, const Vector3<S>& h, const S& m, const Vector3<S>& r,
                                              const S& sigma) {
