@@ -83,7 +83,7 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
       data.D_inv[i](0, 0) = S(1) / D;
       data.u[i][0] = u;
       if (lambda > 0) {
-        IA.noalias() -= U * (U.transpose() / D);                                 // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
+        for (int c = 0; c < 6; ++c) IA.col(c) -= U * (U[c] / D);                 // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
         const Vector6<S> pa = pA + IA * data.c[i].toVector() + U * (u / D);     // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
         data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);               // Iᴬ_λ += Xᵀ Iᵃ X
         data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
