@@ -45,6 +45,10 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
       data.v[i] = one_dof_motion(j, qd[j.idx_v]);
       data.c[i] = MotionVector<S>::Zero();
+      data.IA[i].assign(model.inertia[i]);                                      // Iᴬ_i = I_i
+      data.f[i] = one_dof_bias_force(j, model.inertia[i], qd[j.idx_v]);        // pᴬ_i = v ×* I v
+      if (f_ext) data.f[i] -= f_ext[i];                                         //        − f_ext
+      continue;
     } else if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
       const S qd_i = qd[j.idx_v];
       data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);

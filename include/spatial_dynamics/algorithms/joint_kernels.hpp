@@ -178,6 +178,18 @@ SD_INLINE ForceVector<S> inertia_times_one_dof_subspace(const Joint<S>& j, const
   }
 }
 
+/// v ×* I v for v = S q̇ of a 1-DoF joint (eq. 29 with v = S q̇): q̇² (a × F_n ; a × F_f) for a
+/// revolute joint, F = I S; 0 for a prismatic one (v = (0 ; q̇ a), I v = (h × q̇ a ; m q̇ a), and
+/// q̇ a × m q̇ a = 0). The bias force of a body whose parent is the fixed base, without the
+/// 6-vector product I v.
+template <class S>
+SD_INLINE ForceVector<S> one_dof_bias_force(const Joint<S>& j, const RigidInertia<S>& I, const S& qd) {
+  if (j.type != JointType::Revolute) return ForceVector<S>::Zero();
+  const ForceVector<S> F = inertia_times_one_dof_subspace(j, I);
+  const S k = -(qd * qd);  // a × x = x × (−a), and cross_axis(j, x, k) = x × (k a)
+  return {detail::cross_axis(j, F.angular, k), detail::cross_axis(j, F.linear, k)};
+}
+
 /// S q̇ for one joint; `qd` points at the joint's first velocity coordinate.
 template <class S>
 SD_INLINE MotionVector<S> joint_motion(const Joint<S>& j, const S* qd) {

@@ -40,19 +40,25 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
     body_up_transform(model, data, i, q.data(), data.X_up[i]);
-    if (j.nv == 1) {  // S q̇ and S q̈ have one axis: no 6-vector products with zeros
+    if (j.nv == 1 && lambda == 0) {  // v_0 = 0, a_0 = (0 ; −a_g): v_i = S q̇, v_i × S q̇ = 0, X a_0 = (0 ; E a_0)
       const S k = coupling_multiplier(j);                                          // q̇ = k q̇_master
+      const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
+      data.v[i] = one_dof_motion(j, qd_i);
+      MotionVector<S>& a = data.a[i];
+      a = data.X_up[i].applyToLinear(data.a[0].linear);
+      add_one_dof_motion(j, qdd_i, a);                                             // a_i = X a_0 + S q̈
+      data.f[i] = model.inertia[i] * a + one_dof_bias_force(j, model.inertia[i], qd_i);  // f_i = I a + v ×* I v
+      if (f_ext) data.f[i] -= f_ext[i];
+      continue;
+    }
+    if (j.nv == 1) {  // S q̇ and S q̈ have one axis: no 6-vector products with zeros
+      const S k = coupling_multiplier(j);
       const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
       MotionVector<S>& v = data.v[i];
       MotionVector<S>& a = data.a[i];
-      if (lambda == 0) {  // v_0 = 0, a_0 = (0 ; −a_g): v_i = S q̇, v_i × S q̇ = 0, X a_0 = (0 ; E a_0)
-        v = one_dof_motion(j, qd_i);
-        a = data.X_up[i].applyToLinear(data.a[0].linear);
-      } else {
-        v = data.X_up[i].apply(data.v[lambda]);
-        add_one_dof_motion(j, qd_i, v);                                            // v_i = X v_λ + S q̇
-        a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i); // a_i = X a_λ + v_i × S q̇
-      }
+      v = data.X_up[i].apply(data.v[lambda]);
+      add_one_dof_motion(j, qd_i, v);                                              // v_i = X v_λ + S q̇
+      a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i);   // a_i = X a_λ + v_i × S q̇
       add_one_dof_motion(j, qdd_i, a);                                             //       + S q̈
     } else {
       const MotionVector<S> vJ = body_joint_motion(j, qd.data());                  // S q̇
