@@ -56,14 +56,18 @@ SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, i
     const PluckerTransform<S>* X_up = data.X_up.data();
     S* M = data.M.data();
     const Eigen::Index stride = data.M.outerStride();
+    Vector3<S> n = F.angular, f = F.linear;
     for (int lambda = parent[j]; lambda > 0 && joints[lambda].type == JointType::Revolute; lambda = parent[j]) {
-      F = X_up[j].applyInverse(F);                                              // F = ^jX_λᵀ F
+      const PluckerTransform<S>& X = X_up[j];
+      f = X.E.transpose() * f;                                                  // F = ^jX_λᵀ F:
+      n = X.E.transpose() * n + X.r.cross(f);                                   //   (Eᵀ n + r × Eᵀ f ; Eᵀ f)
       j = lambda;
-      const S m = detail::along_axis(joints[j], F.angular);                     // M_ji = S_jᵀ F
+      const S m = detail::along_axis(joints[j], n);                             // M_ji = S_jᵀ F
       const Eigen::Index row = joints[j].idx_v;
       M[row + col * stride] = m;
       M[col + row * stride] = m;
     }
+    F = ForceVector<S>(n, f);
   }
   S column[6];
   while (model.parent[j] > 0) {
