@@ -250,38 +250,24 @@ SD_INLINE S joint_coordinate(const Joint<S>& j, const S* q) {
   return j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
 }
 
-namespace detail {
-
-/// sin and cos of the angles of revolute bodies[0 .. count), count ≤ L, in one L-lane call.
-template <int L, class S>
-SD_INLINE void sines_and_cosines_in_lanes(const Model<S>& model, Data<S>& data, const S* q, const int* bodies, int count) {
-  Lanes<S, L> angle = Lanes<S, L>::Zero(), sine, cosine;
-  for (int l = 0; l < count; ++l) angle.set(l, joint_coordinate(model.joints[bodies[l]], q));
-  sincos_lanes(angle, sine, cosine);
-  for (int l = 0; l < count; ++l) {
-    data.joint_sin[bodies[l]] = sine[l];
-    data.joint_cos[bodies[l]] = cosine[l];
-  }
-}
-
-}  // namespace detail
-
 /// sin and cos of every revolute joint's angle into data.joint_sin and data.joint_cos, as many
 /// angles at once as a vector register holds (lane_trigonometry.hpp): no call per joint in the
-/// passes. The last few angles take the narrowest lane count that holds them (two angles cost
-/// a quarter of an eight-lane call). Scalars without vector lanes take one angle at a time.
+/// passes. Scalars without vector lanes take one angle at a time.
 template <class S>
 SD_INLINE void joint_sines_and_cosines(const Model<S>& model, Data<S>& data, const S* q) {
   constexpr int L = std::is_same<S, double>::value ? kDefaultBatchLanes<S> : 1;  // vector sin/cos: double only
   const int count = static_cast<int>(data.revolute_bodies.size());
-  const int* bodies = data.revolute_bodies.data();
-  int start = 0;
-  for (; count - start >= L; start += L) detail::sines_and_cosines_in_lanes<L>(model, data, q, bodies + start, L);
-  const int rest = count - start;
-  if (rest == 0) return;
-  if (L > 2 && rest <= 2) detail::sines_and_cosines_in_lanes<(L > 2 ? 2 : L)>(model, data, q, bodies + start, rest);
-  else if (L > 4 && rest <= 4) detail::sines_and_cosines_in_lanes<(L > 4 ? 4 : L)>(model, data, q, bodies + start, rest);
-  else detail::sines_and_cosines_in_lanes<L>(model, data, q, bodies + start, rest);
+  for (int start = 0; start < count; start += L) {
+    const int lanes = std::min(L, count - start);
+    const int* bodies = data.revolute_bodies.data() + start;
+    Lanes<S, L> angle = Lanes<S, L>::Zero(), sine, cosine;
+    for (int l = 0; l < lanes; ++l) angle.set(l, joint_coordinate(model.joints[bodies[l]], q));
+    sincos_lanes(angle, sine, cosine);
+    for (int l = 0; l < lanes; ++l) {
+      data.joint_sin[bodies[l]] = sine[l];
+      data.joint_cos[bodies[l]] = cosine[l];
+    }
+  }
 }
 
 /// ^iX_λ(i) from the whole configuration vector q; a revolute joint's sin and cos are read from
