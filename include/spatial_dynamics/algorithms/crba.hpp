@@ -60,7 +60,7 @@ SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, i
     for (int lambda = parent[j]; lambda > 0 && joints[lambda].type == JointType::Revolute; lambda = parent[j]) {
       const PluckerTransform<S>& X = X_up[j];
       f = X.E.transpose() * f;                                                  // F = ^jX_λᵀ F:
-      n = X.E.transpose() * n + X.r.cross(f);                                   //   (Eᵀ n + r × Eᵀ f ; Eᵀ f)
+      n = X.E.transpose() * n + cross_3d(X.r, f);                                   //   (Eᵀ n + r × Eᵀ f ; Eᵀ f)
       j = lambda;
       const S m = detail::along_axis(joints[j], n);                             // M_ji = S_jᵀ F
       const Eigen::Index row = joints[j].idx_v;
@@ -90,7 +90,7 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
   const Vector3<S> n_base = X_i.E.transpose() * F.angular;
   const Vector3<S> f_base = X_i.E.transpose() * F.linear;
   auto moment_about = [&](int j) -> Vector3<S> {  // n_j = n + f × (p_j − p_i)
-    return n_base + f_base.cross(Vector3<S>(data.X_base[j].r - X_i.r));
+    return n_base + cross_3d(f_base, Vector3<S>(data.X_base[j].r - X_i.r));
   };
   int j = model.parent[i];
   if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches

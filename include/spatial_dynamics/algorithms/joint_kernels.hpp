@@ -35,7 +35,7 @@ SD_INLINE Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
     case AxisKind::X: return Vector3<S>(k, S(0), S(0));
     case AxisKind::Y: return Vector3<S>(S(0), k, S(0));
     case AxisKind::Z: return Vector3<S>(S(0), S(0), k);
-    default: return j.axis * k;
+    default: return Vector3<S>(j.axis.x() * k, j.axis.y() * k, j.axis.z() * k);
   }
 }
 
@@ -46,7 +46,7 @@ SD_INLINE Vector3<S> cross_axis(const Joint<S>& j, const Vector3<S>& x, const S&
     case AxisKind::X: return Vector3<S>(S(0), x.z() * k, -(x.y() * k));
     case AxisKind::Y: return Vector3<S>(-(x.z() * k), S(0), x.x() * k);
     case AxisKind::Z: return Vector3<S>(x.y() * k, -(x.x() * k), S(0));
-    default: return x.cross(j.axis * k);
+    default: return cross_3d(x, Vector3<S>(j.axis.x() * k, j.axis.y() * k, j.axis.z() * k));
   }
 }
 
@@ -88,7 +88,7 @@ template <class S>
 SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c, const S& s) {
   for (int k = 0; k < 3; ++k) {
     const Vector3<S> e = E.col(k);
-    E.col(k) = c * e - s * a.cross(e) + ((S(1) - c) * a.dot(e)) * a;
+    E.col(k) = c * e - s * cross_3d(a, e) + ((S(1) - c) * a.dot(e)) * a;
   }
 }
 

@@ -10,13 +10,13 @@ namespace spatial_dynamics {
 /// v × m = (ω×ω_m ; ω×v_m + v×ω_m)   (eq. 17)
 template <class S>
 SD_INLINE MotionVector<S> cross(const MotionVector<S>& v, const MotionVector<S>& m) {
-  return {v.angular.cross(m.angular), v.angular.cross(m.linear) + v.linear.cross(m.angular)};
+  return {cross_3d(v.angular, m.angular), Vector3<S>(cross_3d(v.angular, m.linear) + cross_3d(v.linear, m.angular))};
 }
 
 /// v ×* f = (ω×n + v×f ; ω×f)   (eq. 18)
 template <class S>
 SD_INLINE ForceVector<S> cross(const MotionVector<S>& v, const ForceVector<S>& f) {
-  return {v.angular.cross(f.angular) + v.linear.cross(f.linear), v.angular.cross(f.linear)};
+  return {Vector3<S>(cross_3d(v.angular, f.angular) + cross_3d(v.linear, f.linear)), cross_3d(v.angular, f.linear)};
 }
 
 /// The 6×6 matrix of v× (eq. 17): [ω× 0; v× ω×].

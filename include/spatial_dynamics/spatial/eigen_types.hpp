@@ -23,6 +23,14 @@ template <class S> using VectorX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 template <class S> using MatrixX = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
 template <class S> using Matrix6X = Eigen::Matrix<S, 6, Eigen::Dynamic>;
 
+/// a × b of two 3-vectors, the same arithmetic as Eigen's cross(), but forced inline: Eigen's is
+/// an ordinary inline function, which GCC's inliner leaves out of line once an algorithm body has
+/// grown large, passing both vectors through memory on every call.
+template <class S>
+SD_INLINE Vector3<S> cross_3d(const Vector3<S>& a, const Vector3<S>& b) {
+  return Vector3<S>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
+}
+
 /// The 3-D cross-product matrix: skew(a) * b == a.cross(b) (the "a×" of the seed text).
 template <class S>
 Matrix3<S> skew(const Vector3<S>& a) {

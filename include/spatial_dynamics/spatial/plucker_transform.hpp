@@ -35,7 +35,7 @@ struct PluckerTransform {
 
   // ---- motions: X m = (E ω ; E (v − r×ω))   (eq. 11) -------------------------------------
   SD_INLINE MotionVector<S> apply(const MotionVector<S>& m) const {
-    return {E * m.angular, E * (m.linear - r.cross(m.angular))};
+    return {E * m.angular, E * (m.linear - cross_3d(r, m.angular))};
   }
   /// X (0 ; v) = (0 ; E v): a motion without angular part (such as the base's acceleration −a_g)
   /// has no moment to shift.
@@ -43,17 +43,17 @@ struct PluckerTransform {
   /// X^-1 m = (Eᵀ ω ; Eᵀ v + r × Eᵀ ω)
   SD_INLINE MotionVector<S> applyInverse(const MotionVector<S>& m) const {
     const Vector3<S> w = E.transpose() * m.angular;
-    return {w, E.transpose() * m.linear + r.cross(w)};
+    return {w, E.transpose() * m.linear + cross_3d(r, w)};
   }
 
   // ---- forces: X* f = (E (n − r×f) ; E f)   (eq. 12) ------------------------------------
   SD_INLINE ForceVector<S> apply(const ForceVector<S>& f) const {
-    return {E * (f.angular - r.cross(f.linear)), E * f.linear};
+    return {E * (f.angular - cross_3d(r, f.linear)), E * f.linear};
   }
   /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
   SD_INLINE ForceVector<S> applyInverse(const ForceVector<S>& f) const {
     const Vector3<S> lin = E.transpose() * f.linear;
-    return {E.transpose() * f.angular + r.cross(lin), lin};
+    return {E.transpose() * f.angular + cross_3d(r, lin), lin};
   }
 
   // ---- rigid inertias: I_B = X* I_A X^-1   (eq. 26) ---------------------------------------

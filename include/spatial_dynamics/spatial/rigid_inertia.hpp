@@ -45,8 +45,8 @@ struct RigidInertia {
 
   /// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25 applied to a motion vector)
   SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
-    return {rotational_inertia * v.angular + first_moment.cross(v.linear),
-            mass * v.linear - first_moment.cross(v.angular)};
+    return {rotational_inertia * v.angular + cross_3d(first_moment, v.linear),
+            mass * v.linear - cross_3d(first_moment, v.angular)};
   }
 
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
