@@ -7,6 +7,7 @@
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/algorithms/rnea_packed.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 
@@ -74,6 +75,21 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   return data.tau;
 }
 
+/// The packed path (rnea_packed.hpp) where it applies, rnea_impl otherwise.
+template <class S>
+SD_INLINE void rnea_dispatch(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
+                             const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    if (rnea_takes_packed_path(model)) {
+      rnea_packed_impl(model, data, q, qd, qdd, f_ext);
+      return;
+    }
+  }
+#endif
+  rnea_impl(model, data, q, qd, qdd, f_ext);
+}
+
 /// RNEA with q̇ = q̈ = 0: every v_i and c_i vanish, so a_i = ^iX_λ a_λ and f_i = I_i a_i
 /// (RBDA Table 5.1 with the velocity terms dropped).
 template <class S>
@@ -97,7 +113,7 @@ const VectorX<S>& gravity_rnea_impl(const Model<S>& model, Data<S>& data, const 
 template <class S>
 const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+  detail::rnea_dispatch(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
   detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
   return data.tau;
 }
@@ -108,7 +124,7 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
                        const std::vector<ForceVector<S>>& f_ext) {
   detail::check_external_forces(model, f_ext);
-  detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
+  detail::rnea_dispatch(model, data, q, qd, qdd, f_ext.data());
   detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
   return data.tau;
 }

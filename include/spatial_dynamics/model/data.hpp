@@ -3,12 +3,14 @@
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <type_traits>
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
@@ -28,6 +30,12 @@ struct Data {
   // bodies unused), all computed together before the passes (joint_kernels.hpp).
   std::vector<int> revolute_bodies;
   std::vector<S> joint_sin, joint_cos;
+  // The packed RNEA's per-body state (algorithms/rnea_packed.hpp; double only, empty otherwise):
+  // velocity, acceleration, force, the rows of ^iX_λ's rotation and its translation.
+  struct PackedRneaBody {
+    Packed3Storage w, v, aw, al, n, f, t0, t1, t2, r;
+  };
+  std::vector<PackedRneaBody> packed_rnea;
 
   // ABA.
   std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
@@ -64,6 +72,7 @@ struct Data {
         f(model.nbodies(), ForceVector<S>::Zero()),
         joint_sin(model.nbodies(), S(0)),
         joint_cos(model.nbodies(), S(1)),
+        packed_rnea(std::is_same<S, double>::value ? model.nbodies() : 0),
         IA(model.nbodies()),
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),

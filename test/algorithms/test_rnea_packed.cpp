@@ -1,0 +1,191 @@
+// The packed RNEA (algorithms/rnea_packed.hpp). This target is compiled with -mavx2 -mfma, so
+// rnea() takes the packed path here, where the other unit tests (portable flags) run the scalar
+// code. Oracles: the float128 reference of the same model and inputs, and the scalar RNEA
+// (detail::rnea_impl) compiled in the same file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "allocation_counter.hpp"
+#include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
+#include "spatial_dynamics/reference/high_precision.hpp"
+#include "spatial_dynamics/synthetic/random_robot.hpp"
+#include "test_utils.hpp"
+
+#ifndef SD_PACKED3
+#error "test_rnea_packed is compiled with -mavx2 -mfma: the packed path must be available"
+#endif
+
+namespace sd = spatial_dynamics;
+using Eigen::VectorXd;
+
+namespace {
+
+bool cpu_runs_packed_code() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+
+#define SKIP_WITHOUT_AVX2_FMA() \
+  if (!cpu_runs_packed_code()) GTEST_SKIP() << "this CPU has no AVX2 and FMA"
+
+// Every joint kind the packed path distinguishes: revolute about x, y, z, −y (a general axis) and
+// a tilted axis; prismatic along x, y, z and a tilted axis; two branches from one body.
+const char* const kEveryJointKindUrdf = R"(<robot name='kinds'>
+  <link name='base'/>
+  <link name='l1'><inertial><mass value='1.3'/><origin xyz='0.1 0.02 -0.03'/><inertia ixx='0.02' ixy='0.001' ixz='-0.002' iyy='0.03' iyz='0.003' izz='0.025'/></inertial></link>
+  <link name='l2'><inertial><mass value='0.9'/><origin xyz='-0.04 0.1 0.01'/><inertia ixx='0.011' ixy='-0.001' ixz='0.0005' iyy='0.014' iyz='0.001' izz='0.009'/></inertial></link>
+  <link name='l3'><inertial><mass value='1.1'/><origin xyz='0.02 -0.03 0.12'/><inertia ixx='0.015' ixy='0.002' ixz='0' iyy='0.012' iyz='-0.001' izz='0.017'/></inertial></link>
+  <link name='l4'><inertial><mass value='0.7'/><origin xyz='0.05 0.05 0.05'/><inertia ixx='0.006' ixy='0' ixz='0.001' iyy='0.007' iyz='0' izz='0.008'/></inertial></link>
+  <link name='l5'><inertial><mass value='0.6'/><origin xyz='0 0.03 -0.02'/><inertia ixx='0.004' ixy='0.0005' ixz='0' iyy='0.005' iyz='0.0002' izz='0.006'/></inertial></link>
+  <link name='l6'><inertial><mass value='0.5'/><origin xyz='0.01 0 0.04'/><inertia ixx='0.003' ixy='0' ixz='0' iyy='0.004' iyz='0.0003' izz='0.0035'/></inertial></link>
+  <link name='l7'><inertial><mass value='0.8'/><origin xyz='-0.02 0.01 0.03'/><inertia ixx='0.005' ixy='0.001' ixz='0' iyy='0.006' iyz='0' izz='0.004'/></inertial></link>
+  <link name='l8'><inertial><mass value='0.4'/><origin xyz='0.03 -0.01 0'/><inertia ixx='0.002' ixy='0' ixz='0.0001' iyy='0.003' iyz='0' izz='0.0025'/></inertial></link>
+  <link name='l9'><inertial><mass value='0.3'/><origin xyz='0 0 0.02'/><inertia ixx='0.001' ixy='0' ixz='0' iyy='0.0012' iyz='0' izz='0.0011'/></inertial></link>
+  <joint name='rx' type='continuous'><parent link='base'/><child link='l1'/><origin xyz='0 0 0.1' rpy='0.1 0.2 0.3'/><axis xyz='1 0 0'/></joint>
+  <joint name='ry' type='continuous'><parent link='l1'/><child link='l2'/><origin xyz='0.2 0 0' rpy='-0.4 0.1 0'/><axis xyz='0 1 0'/></joint>
+  <joint name='rz' type='continuous'><parent link='l2'/><child link='l3'/><origin xyz='0 0.15 0.05' rpy='0 0.5 -0.2'/><axis xyz='0 0 1'/></joint>
+  <joint name='px' type='prismatic'><parent link='l3'/><child link='l4'/><origin xyz='0.1 0 0' rpy='0.3 0 0'/><axis xyz='1 0 0'/><limit lower='-1' upper='1' effort='100' velocity='1'/></joint>
+  <joint name='rneg' type='continuous'><parent link='l4'/><child link='l5'/><origin xyz='0 0 0.1'/><axis xyz='0 -1 0'/></joint>
+  <joint name='rtilt' type='continuous'><parent link='l5'/><child link='l6'/><origin xyz='0.05 0.05 0' rpy='0.7 -0.3 0.2'/><axis xyz='0.48 0.6 0.64'/></joint>
+  <joint name='py' type='prismatic'><parent link='l3'/><child link='l7'/><origin xyz='0 -0.1 0'/><axis xyz='0 1 0'/><limit lower='-1' upper='1' effort='100' velocity='1'/></joint>
+  <joint name='pz' type='prismatic'><parent link='l7'/><child link='l8'/><origin xyz='0 0 -0.1' rpy='0 0 1'/><axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='100' velocity='1'/></joint>
+  <joint name='ptilt' type='prismatic'><parent link='l8'/><child link='l9'/><origin xyz='0.02 0 0'/><axis xyz='0.6 0 0.8'/><limit lower='-1' upper='1' effort='100' velocity='1'/></joint>
+</robot>)";
+
+/// Checks the packed RNEA against the float128 reference and against the scalar RNEA on `states`
+/// random states (with random external forces when `with_external_forces`); returns the largest
+/// relative error against the reference.
+double check_against_references(const sd::Model<double>& model, int states, bool with_external_forces,
+                                double bound, std::mt19937& rng) {
+  EXPECT_TRUE(sd::detail::rnea_takes_packed_path(model));
+  sd::Data<double> data(model), scalar_data(model);
+  const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
+  sd::Data<sd::Quad> ref(ref_model);
+  std::vector<sd::ForceVector<double>> f_ext(model.nbodies(), sd::ForceVector<double>::Zero());
+  std::vector<sd::ForceVector<sd::Quad>> f_ext_ref(model.nbodies(), sd::ForceVector<sd::Quad>::Zero());
+  double worst = 0;
+  for (int s = 0; s < states; ++s) {
+    const VectorXd q = sd_test::random_configuration(model, rng);
+    const VectorXd qd = sd_test::random_vector(model.nv, rng), qdd = sd_test::random_vector(model.nv, rng);
+    if (with_external_forces)
+      for (int i = 1; i < model.nbodies(); ++i) {
+        f_ext[i] = sd::ForceVector<double>(sd_test::random_vector(6, rng, 5.0));
+        f_ext_ref[i] = sd::ForceVector<sd::Quad>(sd::to_quad(f_ext[i].toVector()));
+      }
+    const VectorXd tau = with_external_forces ? sd::rnea(model, data, q, qd, qdd, f_ext) : sd::rnea(model, data, q, qd, qdd);
+    const sd::VectorX<sd::Quad> Q = sd::to_quad(q), QD = sd::to_quad(qd), QDD = sd::to_quad(qdd);
+    const sd::VectorX<sd::Quad> tau_ref =
+        with_external_forces ? sd::rnea(ref_model, ref, Q, QD, QDD, f_ext_ref) : sd::rnea(ref_model, ref, Q, QD, QDD);
+    const double error = sd::relative_error_to(tau, tau_ref);
+    worst = std::max(worst, error);
+    EXPECT_LE(error, bound) << "state " << s;
+    // The scalar RNEA on the same inputs: both within the bound of the reference, so within
+    // twice of each other.
+    const VectorXd tau_scalar =
+        sd::detail::rnea_impl(model, scalar_data, q, qd, qdd, with_external_forces ? f_ext.data() : nullptr);
+    EXPECT_LE(sd_test::relative_error(tau, tau_scalar), 2 * bound) << "state " << s;
+  }
+  return worst;
+}
+
+}  // namespace
+
+// Fixed-base models without coupled joints take the packed path; a floating base or a coupled
+// joint keeps the scalar code, which then gives the scalar results bit for bit.
+TEST(PackedRnea, TakesThePathWhereItApplies) {
+  SKIP_WITHOUT_AVX2_FMA();
+  for (const std::string& file : sd_test::robot_files())
+    EXPECT_TRUE(sd::detail::rnea_takes_packed_path(sd::build_model_from_urdf_file(sd_test::robot_path(file)))) << file;
+  sd::ModelBuildOptions floating;
+  floating.floating_base = true;
+  const std::string coupled_urdf =
+      "<robot name='c'><link name='base'/><link name='a'><inertial><mass value='1'/><inertia ixx='0.01' ixy='0' "
+      "ixz='0' iyy='0.02' iyz='0' izz='0.02'/></inertial></link><link name='b'><inertial><mass value='1'/><origin "
+      "xyz='0.1 0 0'/><inertia ixx='0.01' ixy='0' ixz='0' iyy='0.02' iyz='0' izz='0.02'/></inertial></link><joint "
+      "name='ja' type='continuous'><parent link='base'/><child link='a'/><axis xyz='0 0 1'/></joint><joint name='jb' "
+      "type='continuous'><parent link='a'/><child link='b'/><origin xyz='0.3 0 0'/><axis xyz='0 1 0'/><mimic "
+      "joint='ja' multiplier='-2.5' offset='0.7'/></joint></robot>";
+  std::mt19937 rng(5);
+  for (const sd::Model<double>& model :
+       {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating),
+        sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {
+    EXPECT_FALSE(sd::detail::rnea_takes_packed_path(model));
+    sd::Data<double> data(model), scalar_data(model);
+    for (int s = 0; s < 20; ++s) {
+      const VectorXd q = sd_test::random_configuration(model, rng);
+      const VectorXd qd = sd_test::random_vector(model.nv, rng), qdd = sd_test::random_vector(model.nv, rng);
+      const VectorXd tau = sd::rnea(model, data, q, qd, qdd);
+      const VectorXd tau_scalar =
+          sd::detail::rnea_impl(model, scalar_data, q, qd, qdd, static_cast<const sd::ForceVector<double>*>(nullptr));
+      EXPECT_EQ(tau, tau_scalar);
+    }
+  }
+}
+
+// The shared robots: within the accuracy issue's RNEA bound (4e-15) of the float128 reference on
+// 300 random states each.
+TEST(PackedRnea, SharedRobotsAgainstTheReference) {
+  SKIP_WITHOUT_AVX2_FMA();
+  std::mt19937 rng(17);
+  for (const std::string& file : sd_test::robot_files()) {
+    const double worst = check_against_references(sd::build_model_from_urdf_file(sd_test::robot_path(file)), 300, false,
+                                                  4e-15, rng);
+    std::printf("%-22s packed RNEA, worst relative error %.2e\n", file.c_str(), worst);
+  }
+}
+
+// Every joint kind, a branched tree and external forces on every body.
+TEST(PackedRnea, EveryJointKindWithExternalForces) {
+  SKIP_WITHOUT_AVX2_FMA();
+  const sd::Model<double> model = sd::build_model_from_urdf_string(kEveryJointKindUrdf);
+  int prismatic = 0, general = 0;
+  for (int i = 1; i < model.nbodies(); ++i) {
+    prismatic += model.joints[i].type == sd::JointType::Prismatic;
+    general += model.joints[i].axis_kind == sd::AxisKind::General;
+  }
+  ASSERT_EQ(prismatic, 4);
+  ASSERT_GE(general, 3);
+  std::mt19937 rng(23);
+  check_against_references(model, 300, false, 4e-15, rng);
+  check_against_references(model, 300, true, 4e-15, rng);
+}
+
+// A 50-body chain with random axes: per body and pass at most ~5ε (test_hard_cases.cpp), so
+// 10·d·ε with d = 50 bounds the error where nothing cancels; 4× that leaves room for the
+// cancellation of gravity against the accelerations on random states (the scalar RNEA measures
+// 5.2e-15 on such a chain in the benchmark).
+TEST(PackedRnea, RandomChainAgainstTheReference) {
+  SKIP_WITHOUT_AVX2_FMA();
+  std::mt19937 rng(29);
+  const sd::Model<double> model =
+      sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(50, rng)));
+  check_against_references(model, 100, false, 4 * 10 * 50 * std::numeric_limits<double>::epsilon(), rng);
+}
+
+// Nonlinear effects and the CRBA + Cholesky forward dynamics go through the same path; a NaN
+// configuration still fails with the message naming the joint force, and the call allocates nothing.
+TEST(PackedRnea, CallersErrorsAndAllocations) {
+  SKIP_WITHOUT_AVX2_FMA();
+  const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("panda.urdf"));
+  sd::Data<double> data(model);
+  const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
+  sd::Data<sd::Quad> ref(ref_model);
+  std::mt19937 rng(41);
+  const VectorXd q = sd_test::random_configuration(model, rng), qd = sd_test::random_vector(model.nv, rng);
+  const VectorXd h = sd::nonlinear_effects(model, data, q, qd);
+  EXPECT_LE(sd::relative_error_to(h, sd::nonlinear_effects(ref_model, ref, sd::to_quad(q), sd::to_quad(qd))), 4e-15);
+
+  VectorXd bad = q;
+  bad[3] = std::numeric_limits<double>::quiet_NaN();
+  try {
+    sd::rnea(model, data, bad, qd, qd);
+    ADD_FAILURE() << "a NaN angle gave a finite torque";
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find("inverse dynamics"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(sd::rnea(model, data, q.head(3), qd, qd), std::invalid_argument);
+
+  const long before = bench::allocation_count();
+  for (int k = 0; k < 100; ++k) sd::rnea(model, data, q, qd, qd);
+  EXPECT_EQ(bench::allocation_count() - before, 0);
+}
