@@ -2,6 +2,7 @@
 // (RBDA Table 6.2).
 #pragma once
 
+#include "spatial_dynamics/algorithms/crba_packed.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
@@ -131,6 +132,15 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
 /// leaves data.X_base and data.axis_base filled.
 template <class S>
 const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    if (detail::crba_takes_packed_path(model, data)) {  // crba_packed.hpp
+      detail::crba_packed_impl(model, data, q);
+      detail::check_finite_result(model, "mass matrix: the column", data.M);
+      return data.M;
+    }
+  }
+#endif
   update_joint_transforms(model, data, q);
   const int n = model.nbodies();
   for (int i = 1; i < n; ++i) data.Ic[i] = model.inertia[i];

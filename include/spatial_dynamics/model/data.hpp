@@ -44,10 +44,18 @@ struct Data {
   std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
 
   // CRBA.
+  // The packed CRBA's per-body state (algorithms/crba_packed.hpp; double only, empty otherwise):
+  // the rows of ^iX_λ's rotation, its translation, and the composite inertia.
+  struct PackedCrbaBody {
+    Packed3Storage t0, t1, t2, r, I0, I1, I2, h;
+    double mass;
+  };
+  std::vector<PackedCrbaBody> packed_crba;
   std::vector<RigidInertia<S>> Ic;          // composite inertias
   std::vector<Vector3<S>> axis_base;        // each 1-DoF joint's axis in base coordinates
   // Whether crba carries the columns to the ancestors in base coordinates: when the bodies have
-  // four or more moving ancestors on average, where that is cheaper than one transform per pair.
+  // four (twelve on the packed path) or more moving ancestors on average, where that is cheaper
+  // than one transform per pair.
   bool crba_in_base_coordinates = false;
 
   // Results.
@@ -77,6 +85,7 @@ struct Data {
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
+        packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),
         axis_base(model.nbodies(), Vector3<S>::Zero()),
         tau(VectorX<S>::Zero(model.nv)),
@@ -90,7 +99,16 @@ struct Data {
     long ancestor_pairs = 0;
     for (int i = 1; i < model.nbodies(); ++i)
       for (int j = model.parent[i]; j > 0; j = model.parent[j]) ++ancestor_pairs;
-    crba_in_base_coordinates = ancestor_pairs >= 4L * (model.nbodies() - 1);
+    // Base coordinates pay off from 4 moving ancestors per body on average with the scalar carry,
+    // from 12 with the packed one (crba_packed.hpp, taken by the models the packed RNEA takes):
+    // per pair it is two rotations and a cross product in registers, against a cross and a dot
+    // product in base coordinates, but along one dependency chain (measured crossover: chains of
+    // 20 to 25 bodies).
+    long per_body = 4;
+#ifdef SD_PACKED3
+    if (std::is_same<S, double>::value && !model.floating_base && !model.has_coupled_joints) per_body = 12;
+#endif
+    crba_in_base_coordinates = ancestor_pairs >= per_body * (model.nbodies() - 1);
   }
 };
 

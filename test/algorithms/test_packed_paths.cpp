@@ -1,7 +1,7 @@
-// The packed RNEA (algorithms/rnea_packed.hpp). This target is compiled with -mavx2 -mfma, so
-// rnea() takes the packed path here, where the other unit tests (portable flags) run the scalar
-// code. Oracles: the float128 reference of the same model and inputs, and the scalar RNEA
-// (detail::rnea_impl) compiled in the same file.
+// The packed RNEA and CRBA (algorithms/rnea_packed.hpp, crba_packed.hpp). This target is compiled
+// with -mavx2 -mfma, so rnea() and crba() take the packed paths here, where the other unit tests
+// (portable flags) run the scalar code. Oracles: the float128 reference of the same model and
+// inputs, and the scalar RNEA (detail::rnea_impl) compiled in the same file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "test_utils.hpp"
 
 #ifndef SD_PACKED3
-#error "test_rnea_packed is compiled with -mavx2 -mfma: the packed path must be available"
+#error "test_packed_paths is compiled with -mavx2 -mfma: the packed path must be available"
 #endif
 
 namespace sd = spatial_dynamics;
@@ -88,14 +88,47 @@ double check_against_references(const sd::Model<double>& model, int states, bool
   return worst;
 }
 
+/// Checks the packed CRBA against the float128 reference on `states` random states: relative error
+/// within `bound`, both triangles equal, and the entries of joints on different branches exactly 0.
+double check_mass_matrix(const sd::Model<double>& model, int states, double bound, std::mt19937& rng) {
+  sd::Data<double> data(model);
+  data.crba_in_base_coordinates = false;
+  EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data));
+  const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
+  sd::Data<sd::Quad> ref(ref_model);
+  double worst = 0;
+  for (int s = 0; s < states; ++s) {
+    const VectorXd q = sd_test::random_configuration(model, rng);
+    const Eigen::MatrixXd M = sd::crba(model, data, q);
+    const double error = sd::relative_error_to(M, sd::crba(ref_model, ref, sd::to_quad(q)));
+    worst = std::max(worst, error);
+    EXPECT_LE(error, bound) << "state " << s;
+    EXPECT_EQ(M, M.transpose());
+    for (int i = 1; i < model.nbodies(); ++i)
+      for (int k = 1; k < model.nbodies(); ++k) {
+        bool related = false;
+        for (int a = i; a > 0 && !related; a = model.parent[a]) related = a == k;
+        for (int a = k; a > 0 && !related; a = model.parent[a]) related = a == i;
+        if (!related) EXPECT_EQ(M(model.joints[i].idx_v, model.joints[k].idx_v), 0.0) << i << ", " << k;
+      }
+  }
+  return worst;
+}
+
 }  // namespace
 
 // Fixed-base models without coupled joints take the packed path; a floating base or a coupled
 // joint keeps the scalar code, which then gives the scalar results bit for bit.
-TEST(PackedRnea, TakesThePathWhereItApplies) {
+TEST(PackedPaths, TakesThePathWhereItApplies) {
   SKIP_WITHOUT_AVX2_FMA();
-  for (const std::string& file : sd_test::robot_files())
-    EXPECT_TRUE(sd::detail::rnea_takes_packed_path(sd::build_model_from_urdf_file(sd_test::robot_path(file)))) << file;
+  for (const std::string& file : sd_test::robot_files()) {
+    const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
+    const sd::Data<double> data(model);
+    EXPECT_TRUE(sd::detail::rnea_takes_packed_path(model)) << file;
+    // The CRBA's packed path carries columns per ancestor; trees with 12 or more ancestors per
+    // body on average go through base coordinates (none of these robots).
+    EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data)) << file;
+  }
   sd::ModelBuildOptions floating;
   floating.floating_base = true;
   const std::string coupled_urdf =
@@ -106,11 +139,16 @@ TEST(PackedRnea, TakesThePathWhereItApplies) {
       "type='continuous'><parent link='a'/><child link='b'/><origin xyz='0.3 0 0'/><axis xyz='0 1 0'/><mimic "
       "joint='ja' multiplier='-2.5' offset='0.7'/></joint></robot>";
   std::mt19937 rng(5);
+  std::mt19937 chain_rng(3);
+  const sd::Model<double> long_chain =
+      sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(30, chain_rng)));
+  EXPECT_FALSE(sd::detail::crba_takes_packed_path(long_chain, sd::Data<double>(long_chain)));
   for (const sd::Model<double>& model :
        {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating),
         sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {
     EXPECT_FALSE(sd::detail::rnea_takes_packed_path(model));
     sd::Data<double> data(model), scalar_data(model);
+    EXPECT_FALSE(sd::detail::crba_takes_packed_path(model, data));
     for (int s = 0; s < 20; ++s) {
       const VectorXd q = sd_test::random_configuration(model, rng);
       const VectorXd qd = sd_test::random_vector(model.nv, rng), qdd = sd_test::random_vector(model.nv, rng);
@@ -124,18 +162,20 @@ TEST(PackedRnea, TakesThePathWhereItApplies) {
 
 // The shared robots: within the accuracy issue's RNEA bound (4e-15) of the float128 reference on
 // 300 random states each.
-TEST(PackedRnea, SharedRobotsAgainstTheReference) {
+TEST(PackedPaths, SharedRobotsAgainstTheReference) {
   SKIP_WITHOUT_AVX2_FMA();
   std::mt19937 rng(17);
   for (const std::string& file : sd_test::robot_files()) {
     const double worst = check_against_references(sd::build_model_from_urdf_file(sd_test::robot_path(file)), 300, false,
                                                   4e-15, rng);
     std::printf("%-22s packed RNEA, worst relative error %.2e\n", file.c_str(), worst);
+    const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
+    std::printf("%-22s packed CRBA, worst relative error %.2e\n", file.c_str(), check_mass_matrix(model, 300, 4e-15, rng));
   }
 }
 
 // Every joint kind, a branched tree and external forces on every body.
-TEST(PackedRnea, EveryJointKindWithExternalForces) {
+TEST(PackedPaths, EveryJointKindWithExternalForces) {
   SKIP_WITHOUT_AVX2_FMA();
   const sd::Model<double> model = sd::build_model_from_urdf_string(kEveryJointKindUrdf);
   int prismatic = 0, general = 0;
@@ -148,23 +188,26 @@ TEST(PackedRnea, EveryJointKindWithExternalForces) {
   std::mt19937 rng(23);
   check_against_references(model, 300, false, 4e-15, rng);
   check_against_references(model, 300, true, 4e-15, rng);
+  check_mass_matrix(model, 300, 4e-15, rng);
 }
 
 // A 50-body chain with random axes: per body and pass at most ~5ε (test_hard_cases.cpp), so
 // 10·d·ε with d = 50 bounds the error where nothing cancels; 4× that leaves room for the
 // cancellation of gravity against the accelerations on random states (the scalar RNEA measures
 // 5.2e-15 on such a chain in the benchmark).
-TEST(PackedRnea, RandomChainAgainstTheReference) {
+TEST(PackedPaths, RandomChainAgainstTheReference) {
   SKIP_WITHOUT_AVX2_FMA();
   std::mt19937 rng(29);
   const sd::Model<double> model =
       sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(50, rng)));
   check_against_references(model, 100, false, 4 * 10 * 50 * std::numeric_limits<double>::epsilon(), rng);
+  check_mass_matrix(model, 100, 4 * 10 * 50 * std::numeric_limits<double>::epsilon(), rng);
 }
 
-// Nonlinear effects and the CRBA + Cholesky forward dynamics go through the same path; a NaN
-// configuration still fails with the message naming the joint force, and the call allocates nothing.
-TEST(PackedRnea, CallersErrorsAndAllocations) {
+// Nonlinear effects and the CRBA + Cholesky forward dynamics go through the packed paths; a NaN
+// configuration still fails with the message naming the joint force or the mass matrix column,
+// and the calls allocate nothing.
+TEST(PackedPaths, CallersErrorsAndAllocations) {
   SKIP_WITHOUT_AVX2_FMA();
   const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path("panda.urdf"));
   sd::Data<double> data(model);
@@ -174,6 +217,10 @@ TEST(PackedRnea, CallersErrorsAndAllocations) {
   const VectorXd q = sd_test::random_configuration(model, rng), qd = sd_test::random_vector(model.nv, rng);
   const VectorXd h = sd::nonlinear_effects(model, data, q, qd);
   EXPECT_LE(sd::relative_error_to(h, sd::nonlinear_effects(ref_model, ref, sd::to_quad(q), sd::to_quad(qd))), 4e-15);
+  const VectorXd tau = sd_test::random_vector(model.nv, rng, 10.0);
+  const VectorXd qdd = sd::forward_dynamics(model, data, q, qd, tau);
+  const VectorXd qdd_ref = sd::aba(ref_model, ref, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau)).cast<double>();
+  EXPECT_LE(sd_test::relative_error(qdd, qdd_ref), 1e-12);
 
   VectorXd bad = q;
   bad[3] = std::numeric_limits<double>::quiet_NaN();
@@ -184,8 +231,18 @@ TEST(PackedRnea, CallersErrorsAndAllocations) {
     EXPECT_NE(std::string(e.what()).find("inverse dynamics"), std::string::npos) << e.what();
   }
   EXPECT_THROW(sd::rnea(model, data, q.head(3), qd, qd), std::invalid_argument);
+  try {
+    sd::crba(model, data, bad);
+    ADD_FAILURE() << "a NaN angle gave a finite mass matrix";
+  } catch (const std::domain_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mass matrix"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(sd::crba(model, data, q.head(3)), std::invalid_argument);
 
   const long before = bench::allocation_count();
-  for (int k = 0; k < 100; ++k) sd::rnea(model, data, q, qd, qd);
+  for (int k = 0; k < 100; ++k) {
+    sd::rnea(model, data, q, qd, qd);
+    sd::crba(model, data, q);
+  }
   EXPECT_EQ(bench::allocation_count() - before, 0);
 }

@@ -1,0 +1,118 @@
+// CRBA (RBDA Table 6.2) on packed 3-vectors (spatial/packed3.hpp), for the models and builds
+// where the packed RNEA applies (rnea_packed.hpp) and the columns are carried one force transform
+// per ancestor (not data.crba_in_base_coordinates). The same formulas as crba.hpp and
+// PluckerTransform::applyInverseAdd; the rounding differs only in the order of fused operations.
+#pragma once
+
+#include "spatial_dynamics/algorithms/input_checks.hpp"
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/algorithms/rnea_packed.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
+
+namespace spatial_dynamics {
+namespace detail {
+
+/// Whether crba() takes the packed path for this model, data and scalar.
+template <class S>
+bool crba_takes_packed_path(const Model<S>& model, const Data<S>& data) {
+  return rnea_takes_packed_path(model) && !data.crba_in_base_coordinates;
+}
+
+#ifdef SD_PACKED3
+
+/// M(q) into data.M; the caller has checked crba_takes_packed_path.
+inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<double>& data,
+                                               const ConstVectorRef<double>& q) {
+  using namespace packed3;
+  check_length("q", q.size(), model.nq);
+  joint_sines_and_cosines(model, data, q.data());
+  Data<double>::PackedCrbaBody* body = data.packed_crba.data();
+  const int nb = model.nbodies();
+  for (int i = 1; i < nb; ++i) {  // Iᶜ_i = I_i
+    const RigidInertia<double>& I = model.inertia[i];
+    Packed3 I0, I1, I2;
+    load_columns(I.rotational_inertia, I0, I1, I2);
+    store(I0, body[i].I0);
+    store(I1, body[i].I1);
+    store(I2, body[i].I2);
+    store(load(I.first_moment.data()), body[i].h);
+    body[i].mass = I.mass;
+  }
+  for (int i = nb - 1; i >= 1; --i) {
+    const Joint<double>& j = model.joints[i];
+    Data<double>::PackedCrbaBody& b = body[i];
+    // ^iX_λ = X_J X_tree, as in rnea_packed_impl.
+    Packed3 c0, c1, c2, axis;
+    load_columns(model.X_tree[i].E, c0, c1, c2);
+    Packed3 r = load_after(model.X_tree[i].E.data() + 8);
+    if (j.type == JointType::Revolute) {
+      packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
+    } else {
+      axis = make(j.axis.x(), j.axis.y(), j.axis.z());
+    }
+    Packed3 t0, t1, t2;
+    transpose(c0, c1, c2, t0, t1, t2);
+    if (j.type == JointType::Prismatic) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);
+    store(t0, b.t0);
+    store(t1, b.t1);
+    store(t2, b.t2);
+    store(r, b.r);
+    const int lambda = model.parent[i];
+    if (lambda == 0) continue;
+    // Iᶜ_λ += Xᵀ Iᶜ_i X (eq. 26 inverted): h' = Eᵀ h, column c of Eᵀ Ī E = Eᵀ (Ī E_c), then the
+    // shift by r with h_A = h' + m r: column c − r h'_c − h_A r_c + (m r·r + 2 h'·r) e_c.
+    const Packed3 I0 = load(b.I0), I1 = load(b.I1), I2 = load(b.I2), h = load(b.h);
+    const double m = b.mass;
+    const Packed3 h_rot = mat_vec(t0, t1, t2, h);
+    const Packed3 h_shifted = h_rot + m * r;
+    const Packed3 rr = r * (h_shifted + h_rot);
+    const double diagonal = rr[0] + rr[1] + rr[2];  // m r·r + 2 h'·r
+    const Packed3 columns[3] = {mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c0)), mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c1)),
+                                mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c2))};
+    Data<double>::PackedCrbaBody& p = body[lambda];
+    store(load(p.I0) + (columns[0] - r * h_rot[0] - h_shifted * r[0] + make(diagonal, 0, 0)), p.I0);
+    store(load(p.I1) + (columns[1] - r * h_rot[1] - h_shifted * r[1] + make(0, diagonal, 0)), p.I1);
+    store(load(p.I2) + (columns[2] - r * h_rot[2] - h_shifted * r[2] + make(0, 0, diagonal)), p.I2);
+    store(load(p.h) + h_shifted, p.h);
+    p.mass += m;
+  }
+  double* M = data.M.data();
+  const Eigen::Index stride = data.M.outerStride();
+  const int* parent = model.parent.data();
+  const Joint<double>* joints = model.joints.data();
+  for (int i = 1; i < nb; ++i) {
+    const Joint<double>& ji = joints[i];
+    const Data<double>::PackedCrbaBody& b = body[i];
+    // F = Iᶜ_i S_i (eq. 25): (Ī a ; −h × a) for a revolute joint, (h × a ; m a) for a prismatic one.
+    const Packed3 axis = make(ji.axis.x(), ji.axis.y(), ji.axis.z());
+    Packed3 n, f;
+    if (ji.type == JointType::Revolute) {
+      n = mat_vec(load(b.I0), load(b.I1), load(b.I2), axis);
+      f = cross(axis, load(b.h));
+    } else {
+      n = cross(load(b.h), axis);
+      f = b.mass * axis;
+    }
+    const Eigen::Index col = ji.idx_v;
+    M[col + col * stride] = packed_along_axis(ji, ji.type == JointType::Revolute ? n : f);  // M_ii = Sᵢᵀ F
+    for (int j = i, lambda = parent[i]; lambda > 0; j = lambda, lambda = parent[j]) {
+      const Data<double>::PackedCrbaBody& x = body[j];  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
+      const Packed3 t0 = load(x.t0), t1 = load(x.t1), t2 = load(x.t2);
+      f = mat_vec(t0, t1, t2, f);
+      n = mat_vec(t0, t1, t2, n) + cross(load(x.r), f);
+      const Joint<double>& jl = joints[lambda];
+      const double m = packed_along_axis(jl, jl.type == JointType::Revolute ? n : f);  // M_λi = S_λᵀ F
+      const Eigen::Index row = jl.idx_v;
+      M[row + col * stride] = m;
+      M[col + row * stride] = m;
+    }
+  }
+  return data.M;
+}
+
+#endif  // SD_PACKED3
+
+}  // namespace detail
+}  // namespace spatial_dynamics
