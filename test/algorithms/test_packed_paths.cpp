@@ -1,6 +1,7 @@
-// The packed RNEA and CRBA (algorithms/rnea_packed.hpp, crba_packed.hpp). This target is compiled
-// with -mavx2 -mfma, so rnea() and crba() take the packed paths here, where the other unit tests
-// (portable flags) run the scalar code. Oracles: the float128 reference of the same model and
+// The packed RNEA and CRBA (algorithms/rnea_packed.hpp, crba_packed.hpp) and the batched RNEA's
+// AVX paths (lanes.hpp: 4 double lanes, columns gathered by 4×4 transposes). This target is
+// compiled with -mavx2 -mfma, so rnea() and crba() take the packed paths here, where the other
+// unit tests (portable flags) run the scalar code. Oracles: the float128 reference of the same model and
 // inputs, and the scalar RNEA (detail::rnea_impl) compiled in the same file.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <stdexcept>
 
 #include "allocation_counter.hpp"
+#include "spatial_dynamics/algorithms/rnea_batch.hpp"
 #include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
@@ -245,4 +247,38 @@ TEST(PackedPaths, CallersErrorsAndAllocations) {
     sd::crba(model, data, q);
   }
   EXPECT_EQ(bench::allocation_count() - before, 0);
+}
+
+// The batched RNEA with 4 AVX lanes: the columns gathered 4×4 at a time plus a remainder (nq = 6,
+// 9 and 12 here), a last partial block of 3 states; every column against the float128 reference
+// and against the scalar RNEA of its state.
+TEST(PackedPaths, BatchedRneaAgainstTheReference) {
+  SKIP_WITHOUT_AVX2_FMA();
+  static_assert(sd::kDefaultBatchLanes<double> == 4, "this target is compiled for AVX2 lanes");
+  std::mt19937 rng(43);
+  for (const std::string& file : {"ur5.urdf", "panda.urdf", "solo12.urdf"}) {
+    const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
+    sd::BatchData<double> batch(model);
+    sd::Data<double> scalar_data(model);
+    const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
+    sd::Data<sd::Quad> ref(ref_model);
+    const int states = 11;
+    Eigen::MatrixXd q(model.nq, states), qd(model.nv, states), qdd(model.nv, states), tau(model.nv, states);
+    for (int c = 0; c < states; ++c) {
+      q.col(c) = sd_test::random_configuration(model, rng);
+      qd.col(c) = sd_test::random_vector(model.nv, rng);
+      qdd.col(c) = sd_test::random_vector(model.nv, rng);
+    }
+    sd::rnea_batch(model, batch, q, qd, qdd, tau);
+    for (int c = 0; c < states; ++c) {
+      const VectorXd tau_scalar = sd::detail::rnea_impl(model, scalar_data, q.col(c), qd.col(c), qdd.col(c),
+                                                        static_cast<const sd::ForceVector<double>*>(nullptr));
+      // Formula by formula, but the compiler fuses multiply-adds differently in the two.
+      EXPECT_LE(sd_test::relative_error(VectorXd(tau.col(c)), tau_scalar), 8e-15) << file << ", state " << c;
+      const sd::VectorX<sd::Quad> tau_ref =
+          sd::rnea(ref_model, ref, sd::to_quad(VectorXd(q.col(c))), sd::to_quad(VectorXd(qd.col(c))),
+                   sd::to_quad(VectorXd(qdd.col(c))));
+      EXPECT_LE(sd::relative_error_to(VectorXd(tau.col(c)), tau_ref), 4e-15) << file << ", state " << c;
+    }
+  }
 }

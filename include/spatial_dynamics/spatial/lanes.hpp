@@ -4,9 +4,11 @@
 // need: 3-vectors, rotations, motion and force vectors, the transform (E, r) applied as in
 // plucker_transform.hpp (eqs. 11–12), the cross products of cross.hpp (eqs. 17–18) and a rigid
 // inertia that is the same in every lane (eq. 25). Each formula is written in the same order as
-// its one-state counterpart, so a lane gives that counterpart's numbers.
+// its one-state counterpart, so a lane gives that counterpart's numbers (bit for bit unless the
+// compiler fuses multiply-adds differently in the two).
 #pragma once
 
+#include <cstring>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -24,18 +26,19 @@
 
 namespace spatial_dynamics {
 
-/// Bytes of the vector registers the lanes fill: 32 with AVX (also where AVX-512 is enabled: the
-/// batched RNEA on the Panda measured 118 ns per state with 4 double lanes against 146 ns with 8
-/// on an AVX-512 machine, whose 512-bit operations run as two 256-bit halves), 16 otherwise.
-#if defined(__AVX__)
+/// Bytes of the widest vector register the compiler was allowed to use.
+#if defined(__AVX512F__)
+constexpr int kSimdBytes = 64;
+#elif defined(__AVX__)
 constexpr int kSimdBytes = 32;
 #else
 constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
 #endif
 
 /// States evaluated together by default: as many as fill one vector register (2 doubles with
-/// SSE2, 4 with AVX). More lanes than a register holds measured slower: the lanes no longer fit
-/// in the registers.
+/// SSE2, 4 with AVX, 8 with AVX-512). More lanes than a register holds measured slower: the lanes
+/// no longer fit in the registers (the batched RNEA on the Panda: 8 double lanes with AVX2,
+/// 268 ns per state against 109 ns with 4; 16 with AVX-512, 137 ns against 91 ns with 8).
 template <class S>
 constexpr int kDefaultBatchLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
 
@@ -75,7 +78,13 @@ struct Lanes : detail::LaneStorage<S, L> {
   SD_LANE_INLINE static Lanes Zero() { return Constant(S(0)); }
   SD_LANE_INLINE static Lanes Constant(const S& x) {
     Lanes out;
-    for (int l = 0; l < L; ++l) out.v[l] = x;
+    if constexpr (kVector) {
+      // One broadcast: x − 0 = x for every x, −0 included. (A store per lane became one masked
+      // broadcast per lane with AVX-512.)
+      out.v = x - decltype(out.v){};
+    } else {
+      for (int l = 0; l < L; ++l) out.v[l] = x;
+    }
     return out;
   }
   SD_LANE_INLINE S operator[](int l) const { return this->v[l]; }
@@ -117,6 +126,41 @@ SD_LANE_BINARY_OPERATOR(+)
 SD_LANE_BINARY_OPERATOR(-)
 SD_LANE_BINARY_OPERATOR(*)
 #undef SD_LANE_BINARY_OPERATOR
+
+/// out[k] = (column[0][k], …, column[L − 1][k]) for k < n: L columns of coordinates turned into
+/// one Lanes per coordinate. With GCC, AVX and double lanes in groups of 4, blocks of 4×4 are
+/// transposed in registers (4 loads, 8 shuffles, 4 stores for 16 coordinates); otherwise lane by lane.
+template <class S, int L>
+SD_LANE_INLINE void gather_columns(const S* const* column, int n, Lanes<S, L>* out) {
+  int k = 0;
+#if defined(__GNUC__) && !defined(__clang__) && defined(__AVX__)
+  if constexpr (std::is_same<S, double>::value && L % 4 == 0 && Lanes<S, L>::kVector) {
+    typedef double Quad __attribute__((vector_size(32)));
+    typedef long long Index __attribute__((vector_size(32)));
+    const auto load = [](const S* p) {  // p[0 .. 3], unaligned
+      Quad x;
+      std::memcpy(&x, p, sizeof x);
+      return x;
+    };
+    for (; k + 4 <= n; k += 4)
+      for (int g = 0; g < L; g += 4) {  // lanes g .. g + 3
+        const Quad row0 = load(column[g] + k), row1 = load(column[g + 1] + k), row2 = load(column[g + 2] + k),
+                   row3 = load(column[g + 3] + k);
+        const Quad low01 = __builtin_shuffle(row0, row1, Index{0, 4, 2, 6});
+        const Quad high01 = __builtin_shuffle(row0, row1, Index{1, 5, 3, 7});
+        const Quad low23 = __builtin_shuffle(row2, row3, Index{0, 4, 2, 6});
+        const Quad high23 = __builtin_shuffle(row2, row3, Index{1, 5, 3, 7});
+        const Quad lanes[4] = {__builtin_shuffle(low01, low23, Index{0, 1, 4, 5}),
+                               __builtin_shuffle(high01, high23, Index{0, 1, 4, 5}),
+                               __builtin_shuffle(low01, low23, Index{2, 3, 6, 7}),
+                               __builtin_shuffle(high01, high23, Index{2, 3, 6, 7})};
+        for (int i = 0; i < 4; ++i) std::memcpy(reinterpret_cast<S*>(&out[k + i].v) + g, &lanes[i], sizeof(Quad));
+      }
+  }
+#endif
+  for (; k < n; ++k)
+    for (int l = 0; l < L; ++l) out[k].set(l, column[l][k]);
+}
 
 /// A 3-vector per lane: x, y and z each hold L lanes.
 template <class S, int L>

@@ -6,12 +6,12 @@
 // whatever the load brought with it (a neighbouring coefficient of the same struct) and no
 // operation below moves it into lanes 0–2.
 //
-// Available with GCC or Clang when AVX2 and FMA are enabled (-march=native on such a machine,
+// Available with GCC when AVX2 and FMA are enabled (-march=native on such a machine,
 // or -mavx2 -mfma): SD_PACKED3 is then defined. Otherwise the scalar code is used everywhere.
 #pragma once
 
-#if defined(__GNUC__) && defined(__AVX2__) && defined(__FMA__)
-#define SD_PACKED3 1
+#if defined(__GNUC__) && !defined(__clang__) && defined(__AVX2__) && defined(__FMA__)
+#define SD_PACKED3 1  // GCC's __builtin_shuffle below; Clang spells it differently
 #endif
 
 #include <cstring>
