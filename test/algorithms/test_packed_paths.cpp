@@ -206,7 +206,8 @@ TEST(PackedPaths, RandomChainAgainstTheReference) {
   check_mass_matrix(model, 100, 4 * 10 * 50 * std::numeric_limits<double>::epsilon(), rng);
 }
 
-// Nonlinear effects and the CRBA + Cholesky forward dynamics go through the packed paths; a NaN
+// Nonlinear effects, gravity torques and the CRBA + Cholesky forward dynamics go through the
+// packed paths; a NaN
 // configuration still fails with the message naming the joint force or the mass matrix column,
 // and the calls allocate nothing.
 TEST(PackedPaths, CallersErrorsAndAllocations) {
@@ -219,6 +220,8 @@ TEST(PackedPaths, CallersErrorsAndAllocations) {
   const VectorXd q = sd_test::random_configuration(model, rng), qd = sd_test::random_vector(model.nv, rng);
   const VectorXd h = sd::nonlinear_effects(model, data, q, qd);
   EXPECT_LE(sd::relative_error_to(h, sd::nonlinear_effects(ref_model, ref, sd::to_quad(q), sd::to_quad(qd))), 4e-15);
+  const VectorXd g = sd::gravity_torques(model, data, q);
+  EXPECT_LE(sd::relative_error_to(g, sd::gravity_torques(ref_model, ref, sd::to_quad(q))), 4e-15);
   const VectorXd tau = sd_test::random_vector(model.nv, rng, 10.0);
   const VectorXd qdd = sd::forward_dynamics(model, data, q, qd, tau);
   const VectorXd qdd_ref = sd::aba(ref_model, ref, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau)).cast<double>();
@@ -244,6 +247,7 @@ TEST(PackedPaths, CallersErrorsAndAllocations) {
   const long before = bench::allocation_count();
   for (int k = 0; k < 100; ++k) {
     sd::rnea(model, data, q, qd, qd);
+    sd::gravity_torques(model, data, q);
     sd::crba(model, data, q);
   }
   EXPECT_EQ(bench::allocation_count() - before, 0);

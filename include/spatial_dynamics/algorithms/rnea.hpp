@@ -132,6 +132,15 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
 /// Gravity torques g(q) = ID(q, 0, 0).
 template <class S>
 const VectorX<S>& gravity_torques(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    if (detail::rnea_takes_packed_path(model)) {  // the full packed RNEA beats the scalar one without velocities
+      detail::rnea_packed_impl(model, data, q, data.zero_v, data.zero_v, nullptr);
+      detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
+      return data.tau;
+    }
+  }
+#endif
   detail::gravity_rnea_impl(model, data, q);
   for (int i = 1; i < model.nbodies(); ++i) data.v[i] = MotionVector<S>::Zero();  // as rnea leaves them
   detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
