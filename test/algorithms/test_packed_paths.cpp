@@ -90,18 +90,20 @@ double check_against_references(const sd::Model<double>& model, int states, bool
   return worst;
 }
 
-/// Checks the packed CRBA against the float128 reference on `states` random states: relative error
-/// within `bound`, both triangles equal, and the entries of joints on different branches exactly 0.
+/// Checks the packed CRBA, with both carries (per ancestor, from base coordinates), against the
+/// float128 reference on `states` random states: relative error within `bound`, both triangles
+/// equal, and the entries of joints on different branches exactly 0.
 double check_mass_matrix(const sd::Model<double>& model, int states, double bound, std::mt19937& rng) {
-  sd::Data<double> data(model);
+  sd::Data<double> data(model), in_base(model);
   data.crba_in_base_coordinates = false;
+  in_base.crba_in_base_coordinates = true;
   EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data));
   const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
   sd::Data<sd::Quad> ref(ref_model);
   double worst = 0;
-  for (int s = 0; s < states; ++s) {
+  for (int s = 0; s < 2 * states; ++s) {
     const VectorXd q = sd_test::random_configuration(model, rng);
-    const Eigen::MatrixXd M = sd::crba(model, data, q);
+    const Eigen::MatrixXd M = sd::crba(model, s % 2 == 0 ? data : in_base, q);
     const double error = sd::relative_error_to(M, sd::crba(ref_model, ref, sd::to_quad(q)));
     worst = std::max(worst, error);
     EXPECT_LE(error, bound) << "state " << s;
@@ -127,9 +129,10 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
     const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
     const sd::Data<double> data(model);
     EXPECT_TRUE(sd::detail::rnea_takes_packed_path(model)) << file;
-    // The CRBA's packed path carries columns per ancestor; trees with 12 or more ancestors per
-    // body on average go through base coordinates (none of these robots).
+    // The CRBA's packed path carries columns per ancestor, or from base coordinates on trees with
+    // 4 or more ancestors per body in runs of 2 or more on average (of these robots, talos).
     EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data)) << file;
+    EXPECT_EQ(data.crba_in_base_coordinates, file == "talos.urdf") << file;
   }
   sd::ModelBuildOptions floating;
   floating.floating_base = true;
@@ -144,7 +147,7 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
   std::mt19937 chain_rng(3);
   const sd::Model<double> long_chain =
       sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(30, chain_rng)));
-  EXPECT_FALSE(sd::detail::crba_takes_packed_path(long_chain, sd::Data<double>(long_chain)));
+  EXPECT_TRUE(sd::Data<double>(long_chain).crba_in_base_coordinates);  // 14.5 ancestors per body, one run
   for (const sd::Model<double>& model :
        {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating),
         sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "spatial_dynamics/algorithms/crba_packed.hpp"
+#include "spatial_dynamics/algorithms/crba_base_carry.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
@@ -41,6 +42,14 @@ void base_poses_and_axes(const Model<S>& model, Data<S>& data) {
       default: data.axis_base[i] = data.X_base[i].E.transpose() * j.axis; break;
     }
   }
+  // The same origins and axes as six arrays, for carry_over_revolute_run.
+  const int stride = static_cast<int>(data.base_origin_and_axis.size()) / 6;
+  S* soa = data.base_origin_and_axis.data();
+  for (int i = 1; i < model.nbodies(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      soa[k * stride + i] = data.X_base[i].r[k];
+      soa[(3 + k) * stride + i] = data.axis_base[i][k];
+    }
 }
 
 /// M_ji = S_jᵀ F for every ancestor j of body i, F = Iᶜ_i S_i (column `col`, coupling k_i) in
@@ -94,11 +103,11 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
     return n_base + cross_3d(f_base, Vector3<S>(data.X_base[j].r - X_i.r));
   };
   int j = model.parent[i];
-  if (!model.has_coupled_joints) {  // the common case, revolute ancestors and no coupling, without branches
-    for (; j > 0 && model.joints[j].type == JointType::Revolute; j = model.parent[j]) {
-      const S m = data.axis_base[j].dot(moment_about(j));
-      data.M(model.joints[j].idx_v, col) = m;
-      data.M(col, model.joints[j].idx_v) = m;
+  if (!model.has_coupled_joints) {  // the common case: runs of revolute ancestors, L bodies at a time
+    while (j > 0 && data.revolute_run_start[j] > 0) {
+      const int first = data.revolute_run_start[j];
+      carry_over_revolute_run(model, data, n_base, f_base, X_i.r, first, j, col);
+      j = model.parent[first];
     }
   }
   S column[6];

@@ -9,6 +9,7 @@
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/lanes.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
 #include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
@@ -45,17 +46,25 @@ struct Data {
 
   // CRBA.
   // The packed CRBA's per-body state (algorithms/crba_packed.hpp; double only, empty otherwise):
-  // the rows of ^iX_λ's rotation, its translation, and the composite inertia.
+  // the rows of ^iX_λ's rotation, its translation, the composite inertia, and for the carry in
+  // base coordinates the rows of ^iX_0's rotation and its translation.
   struct PackedCrbaBody {
-    Packed3Storage t0, t1, t2, r, I0, I1, I2, h;
+    Packed3Storage t0, t1, t2, r, I0, I1, I2, h, base_t0, base_t1, base_t2, base_r;
     double mass;
   };
   std::vector<PackedCrbaBody> packed_crba;
   std::vector<RigidInertia<S>> Ic;          // composite inertias
   std::vector<Vector3<S>> axis_base;        // each 1-DoF joint's axis in base coordinates
+  // The carry in base coordinates over runs of revolute ancestors, L at a time (crba.hpp): each
+  // body's origin and axis in base coordinates as six arrays (x, y, z of the origin, then of the
+  // axis), each padded so that a block of lanes may read past the last body; and per body the
+  // first body of its run: the bodies k ≤ i down to it each have parent k − 1, a revolute joint
+  // of their own and coordinate idx_v of body k − 1 plus one.
+  std::vector<S> base_origin_and_axis;
+  std::vector<int> revolute_run_start;
   // Whether crba carries the columns to the ancestors in base coordinates: when the bodies have
-  // four (twelve on the packed path) or more moving ancestors on average, where that is cheaper
-  // than one transform per pair.
+  // four or more moving ancestors on average, in runs of two or more, where that is cheaper than
+  // one transform per pair.
   bool crba_in_base_coordinates = false;
 
   // Results.
@@ -88,6 +97,8 @@ struct Data {
         packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),
         axis_base(model.nbodies(), Vector3<S>::Zero()),
+        base_origin_and_axis(6 * (model.nbodies() + kDefaultBatchLanes<S>), S(0)),
+        revolute_run_start(model.nbodies(), 0),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
@@ -96,19 +107,26 @@ struct Data {
         llt(model.nv) {
     for (int i = 1; i < model.nbodies(); ++i)
       if (model.joints[i].type == JointType::Revolute) revolute_bodies.push_back(i);
-    long ancestor_pairs = 0;
+    for (int i = 1; i < model.nbodies(); ++i) {
+      const Joint<S>& j = model.joints[i];
+      const bool revolute = j.type == JointType::Revolute && !j.coupled;
+      const bool extends = revolute && i > 1 && model.parent[i] == i - 1 && revolute_run_start[i - 1] > 0 &&
+                           j.idx_v == model.joints[i - 1].idx_v + 1;
+      revolute_run_start[i] = extends ? revolute_run_start[i - 1] : (revolute ? i : 0);
+    }
+    // Base coordinates pay off from 4 moving ancestors per body on average, where those form runs
+    // of two or more bodies on average (the runs are carried several at a time, crba_base_carry.hpp;
+    // a random tree's short runs measured faster one transform per pair: 2.0 against 2.8 µs on 50
+    // bodies, a 16-body chain 0.80 against 1.13 µs).
+    long ancestor_pairs = 0, ancestor_runs = 0;
     for (int i = 1; i < model.nbodies(); ++i)
-      for (int j = model.parent[i]; j > 0; j = model.parent[j]) ++ancestor_pairs;
-    // Base coordinates pay off from 4 moving ancestors per body on average with the scalar carry,
-    // from 12 with the packed one (crba_packed.hpp, taken by the models the packed RNEA takes):
-    // per pair it is two rotations and a cross product in registers, against a cross and a dot
-    // product in base coordinates, but along one dependency chain (measured crossover: chains of
-    // 20 to 25 bodies).
-    long per_body = 4;
-#ifdef SD_PACKED3
-    if (std::is_same<S, double>::value && !model.floating_base && !model.has_coupled_joints) per_body = 12;
-#endif
-    crba_in_base_coordinates = ancestor_pairs >= per_body * (model.nbodies() - 1);
+      for (int j = model.parent[i]; j > 0;) {
+        const int first = revolute_run_start[j] > 0 ? revolute_run_start[j] : j;
+        ancestor_pairs += j - first + 1;
+        ++ancestor_runs;
+        j = model.parent[first];
+      }
+    crba_in_base_coordinates = ancestor_pairs >= 4L * (model.nbodies() - 1) && 2 * ancestor_runs <= ancestor_pairs;
   }
 };
 

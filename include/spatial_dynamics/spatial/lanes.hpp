@@ -87,6 +87,16 @@ struct Lanes : detail::LaneStorage<S, L> {
     }
     return out;
   }
+  /// p[0 .. L), unaligned.
+  SD_LANE_INLINE static Lanes Load(const S* p) {
+    Lanes out;
+    if constexpr (kVector) {
+      std::memcpy(&out.v, p, sizeof out.v);
+    } else {
+      for (int l = 0; l < L; ++l) out.v[l] = p[l];
+    }
+    return out;
+  }
   SD_LANE_INLINE S operator[](int l) const { return this->v[l]; }
   SD_LANE_INLINE void set(int l, const S& x) { this->v[l] = x; }
 
