@@ -2,8 +2,8 @@
 // (RBDA Table 6.2).
 #pragma once
 
-#include "spatial_dynamics/algorithms/crba_packed.hpp"
 #include "spatial_dynamics/algorithms/crba_base_carry.hpp"
+#include "spatial_dynamics/algorithms/crba_packed.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
@@ -138,7 +138,8 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
 /// The composite inertias and F = Iᶜ_i S_i are formed in body coordinates, as in RBDA. F reaches
 /// the ancestors by one force transform each, or on deep trees (data.crba_in_base_coordinates:
 /// fewer operations per pair, once the poses in the base are known) from base coordinates, which
-/// leaves data.X_base and data.axis_base filled.
+/// leaves data.X_base and data.axis_base filled on the scalar path. Where AVX2 and FMA are enabled,
+/// double models without a floating base or coupled joints take crba_packed.hpp instead.
 template <class S>
 const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
 #ifdef SD_PACKED3

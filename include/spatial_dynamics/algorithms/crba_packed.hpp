@@ -124,20 +124,9 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
     body[i].mass = I.mass;
   }
   for (int i = nb - 1; i >= 1; --i) {
-    const Joint<double>& j = model.joints[i];
     Data<double>::PackedCrbaBody& b = body[i];
-    // ^iX_λ = X_J X_tree, as in rnea_packed_impl.
-    Packed3 c0, c1, c2, axis;
-    load_columns(model.X_tree[i].E, c0, c1, c2);
-    Packed3 r = load_after(model.X_tree[i].E.data() + 8);
-    if (j.type == JointType::Revolute) {
-      packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
-    } else {
-      axis = make(j.axis.x(), j.axis.y(), j.axis.z());
-    }
-    Packed3 t0, t1, t2;
-    transpose(c0, c1, c2, t0, t1, t2);
-    if (j.type == JointType::Prismatic) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);
+    Packed3 c0, c1, c2, t0, t1, t2, r, axis;
+    packed_up_transform(model, data, i, q.data(), c0, c1, c2, t0, t1, t2, r, axis);  // ^iX_λ
     store(t0, b.t0);
     store(t1, b.t1);
     store(t2, b.t2);

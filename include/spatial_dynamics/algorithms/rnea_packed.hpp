@@ -33,34 +33,25 @@ bool rnea_takes_packed_path(const Model<S>& model) {
 SD_INLINE void packed_revolute_rotation(const Joint<double>& j, double s, double c, packed3::Packed3& c0,
                                         packed3::Packed3& c1, packed3::Packed3& c2, packed3::Packed3& axis) {
   using namespace packed3;
+  // c_k ← cv ∘ c_k + sv ∘ (c_k with lanes m and n swapped), for rows (m, n) = (1, 2), (2, 0), (0, 1).
+  const auto rotate_rows = [&](const Packed3& cv, const Packed3& sv, const LaneIndex& swap) {
+    c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
+    c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
+    c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
+  };
   switch (j.axis_kind) {
-    case AxisKind::X: {
-      const Packed3 cv{1, c, c, 1}, sv{0, s, -s, 0};
-      const LaneIndex swap{0, 2, 1, 3};
-      c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
-      c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
-      c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
+    case AxisKind::X:
+      rotate_rows(Packed3{1, c, c, 1}, Packed3{0, s, -s, 0}, LaneIndex{0, 2, 1, 3});
       axis = make(1, 0, 0);
       return;
-    }
-    case AxisKind::Y: {
-      const Packed3 cv{c, 1, c, 1}, sv{-s, 0, s, 0};
-      const LaneIndex swap{2, 1, 0, 3};
-      c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
-      c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
-      c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
+    case AxisKind::Y:
+      rotate_rows(Packed3{c, 1, c, 1}, Packed3{-s, 0, s, 0}, LaneIndex{2, 1, 0, 3});
       axis = make(0, 1, 0);
       return;
-    }
-    case AxisKind::Z: {
-      const Packed3 cv{c, c, 1, 1}, sv{s, -s, 0, 0};
-      const LaneIndex swap{1, 0, 2, 3};
-      c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
-      c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
-      c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
+    case AxisKind::Z:
+      rotate_rows(Packed3{c, c, 1, 1}, Packed3{s, -s, 0, 0}, LaneIndex{1, 0, 2, 3});
       axis = make(0, 0, 1);
       return;
-    }
     default: {
       // rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ, column by column.
       const Vector3<double>& a = j.axis;
@@ -75,6 +66,26 @@ SD_INLINE void packed_revolute_rotation(const Joint<double>& j, double s, double
       return;
     }
   }
+}
+
+/// ^iX_λ = X_J(q_i) X_tree(i) (RBDA Table 4.1) of a revolute or prismatic joint: the columns
+/// c0..c2 of E, its rows t0..t2, r, and the joint's axis; sin and cos from data.
+SD_INLINE void packed_up_transform(const Model<double>& model, const Data<double>& data, int i, const double* q,
+                                   packed3::Packed3& c0, packed3::Packed3& c1, packed3::Packed3& c2,
+                                   packed3::Packed3& t0, packed3::Packed3& t1, packed3::Packed3& t2,
+                                   packed3::Packed3& r, packed3::Packed3& axis) {
+  using namespace packed3;
+  const Joint<double>& j = model.joints[i];
+  const PluckerTransform<double>& Xt = model.X_tree[i];
+  load_columns(Xt.E, c0, c1, c2);
+  r = load_after(Xt.E.data() + 8);
+  if (j.type == JointType::Revolute) {
+    packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
+  } else {
+    axis = make(j.axis.x(), j.axis.y(), j.axis.z());
+  }
+  transpose(c0, c1, c2, t0, t1, t2);
+  if (j.type == JointType::Prismatic) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);  // r = r_tree + E_treeᵀ (q a)
 }
 
 /// I x for a rigid inertia (eq. 25): (Ī ω + h × v ; m v − h × ω).
@@ -114,21 +125,10 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
   const int nb = model.nbodies();
   for (int i = 1; i < nb; ++i) {
     const Joint<double>& j = model.joints[i];
-    const PluckerTransform<double>& Xt = model.X_tree[i];
     Data<double>::PackedRneaBody& b = body[i];
     const Data<double>::PackedRneaBody& p = body[model.parent[i]];
-    // ^iX_λ = X_J X_tree: the columns of E, its rows, and r.
-    Packed3 c0, c1, c2, axis;
-    load_columns(Xt.E, c0, c1, c2);
-    Packed3 r = load_after(Xt.E.data() + 8);
-    if (j.type == JointType::Revolute) {
-      packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
-    } else {
-      axis = make(j.axis.x(), j.axis.y(), j.axis.z());
-    }
-    Packed3 t0, t1, t2;
-    transpose(c0, c1, c2, t0, t1, t2);
-    if (j.type == JointType::Prismatic) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);  // r = r_tree + E_treeᵀ (q a)
+    Packed3 c0, c1, c2, t0, t1, t2, r, axis;
+    packed_up_transform(model, data, i, q.data(), c0, c1, c2, t0, t1, t2, r, axis);
     store(t0, b.t0);
     store(t1, b.t1);
     store(t2, b.t2);
