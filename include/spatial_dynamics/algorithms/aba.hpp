@@ -1,4 +1,5 @@
-// Articulated-body algorithm, q̈ = FD(q, q̇, τ, f_ext)   (RBDA Table 7.1).
+// Articulated-body algorithm, q̈ = FD(q, q̇, τ, f_ext)   (RBDA Table 7.1). For float and double,
+// gravity is split off first: the passes solve FD(q, q̇, τ − τ_g(q)) without it (gravity_split.hpp).
 // A joint whose subtree has no inertia along its motion (D = Sᵀ Iᴬ S = 0, e.g. a massless leaf)
 // makes forward dynamics undefined: the call fails with a message naming that joint.
 #pragma once
@@ -8,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "spatial_dynamics/algorithms/gravity_split.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
@@ -36,12 +38,14 @@ SD_INLINE void check_aba_inputs(const Model<S>& model, const ConstVectorRef<S>& 
 /// Pass 1 (outward): transforms, velocities, velocity-product accelerations, rigid bias forces.
 template <class S>
 SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
-                                 const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext) {
+                                 const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext, bool split_gravity) {
   joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
+  if (split_gravity) gravity_split_start(model, data);
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     body_up_transform(model, data, i, q.data(), data.X_up[i]);
+    if (split_gravity) gravity_split_outward(model, data, i);                    // g_i = E g_λ
     if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
       data.v[i] = one_dof_motion(j, qd[j.idx_v]);
       data.c[i] = MotionVector<S>::Zero();
@@ -60,17 +64,21 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
       data.c[i] = cross(data.v[i], vJ);
     }
     data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
-    data.f[i] = cross(data.v[i], model.inertia[i] * data.v[i]);                 // pᴬ_i = v ×* I v
+    data.f[i] = model.inertia[i].biasForce(data.v[i]);                          // pᴬ_i = v ×* I v
     if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext
   }
 }
 
-/// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ.
+/// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
+/// with split_gravity, the joint forces τ − τ_g(q) in place of τ.
 template <class S>
-SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau) {
+SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau_in,
+                                bool split_gravity) {
+  const ConstVectorRef<S> tau = split_gravity ? ConstVectorRef<S>(data.tau_less_gravity) : tau_in;
   for (int i = model.nbodies() - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
+    if (split_gravity) gravity_split_inward(model, data, i, tau_in);            // τ − τ_g at joint i
     Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place below
     const Vector6<S> pA = data.f[i].toVector();
     if (j.nv == 1) {
@@ -102,10 +110,10 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
   }
 }
 
-/// Pass 3 (outward): accelerations into data.qdd.
+/// Pass 3 (outward): accelerations into data.qdd; gravity as a_0 = −a_g unless it was split off.
 template <class S>
-SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data) {
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);             // a_0 = −a_g
+SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data, bool split_gravity) {
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), split_gravity ? Vector3<S>::Zero() : Vector3<S>(-model.gravity));
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
@@ -130,9 +138,10 @@ const VectorX<S>& aba_impl(const Model<S>& model, Data<S>& data, const ConstVect
                            const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
                            const ForceVector<S>* f_ext) {
   check_aba_inputs(model, q, qd, tau);
-  aba_velocity_pass(model, data, q, qd, f_ext);
-  aba_inertia_pass(model, data, tau);
-  aba_acceleration_pass(model, data);
+  const bool split_gravity = splits_gravity(model);
+  aba_velocity_pass(model, data, q, qd, f_ext, split_gravity);
+  aba_inertia_pass(model, data, tau, split_gravity);
+  aba_acceleration_pass(model, data, split_gravity);
   return data.qdd;
 }
 

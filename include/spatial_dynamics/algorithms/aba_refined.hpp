@@ -60,6 +60,7 @@ struct RefinementWorkspace {
   VectorX<S> residual, delta;
   int iterations = 0;  // corrections applied by the last call
   S first_correction = S(0);  // ‖δ₀‖/‖x‖ of the last call: the unrefined result's relative error
+  S effort_norm = S(0);       // ‖τ‖ of the last call
 
   explicit RefinementWorkspace(const Model<S>& model)
       : model_wide(model.template cast<W>()),
@@ -435,6 +436,7 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
   ws.first_correction = S(0);
   for (int it = 0; it < max_iterations; ++it) {
     for (int k = 0; k < model.nv; ++k) ws.residual[k] = S(ws.residual_wide[k]);
+    const S residual_size = ws.residual.norm();
     solve_with_aba_factorisation(model, data, ws);
     const S size = ws.delta.norm();
     if (!(size < previous)) break;  // no longer improving (or not finite): keep x_k
@@ -447,7 +449,10 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
     for (int k = 0; k < model.nv; ++k) x_size += S(ws.x_wide[k]) * S(ws.x_wide[k]);
     x_size = sqrt(x_size);
     if (it == 0) ws.first_correction = size / x_size;
-    if (rate == S(0)) rate = size / x_size;  // x₀'s relative error ≈ ‖δ₀‖/‖x‖
+    // ρ from x₀'s relative error ‖δ₀‖/‖x‖, and at least ε ‖M⁻¹‖ ‖τ‖/‖x‖ (‖M⁻¹‖ ≈ ‖δ₀‖/‖r₀‖), the
+    // rounding of τ's own size that the residuals carry: the ABA splits gravity off (gravity_split.hpp),
+    // so x₀ can be far more accurate than a solve of a residual whose forces cancel (τ ≈ h).
+    if (rate == S(0)) rate = std::max(size / x_size, eps * (size / residual_size) * ws.effort_norm / x_size);
     if (size <= eps * x_size) break;         // the correction is below the result's resolution
     // The next correction, about ρ‖δ‖, would be below the resolution (with a margin of 32 for
     // ρ measured on one right-hand side), or this one is already at the residual's noise level
@@ -465,6 +470,7 @@ template <class S, class W>
 void aba_with_wide_residual(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
                             const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
   aba(model, data, q, qd, tau);
+  ws.effort_norm = tau.norm();
   for (int k = 0; k < model.nq; ++k) ws.q_wide[k] = W(q[k]);
   for (int k = 0; k < model.nv; ++k) {
     ws.qd_wide[k] = W(qd[k]);

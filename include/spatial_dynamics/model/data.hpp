@@ -8,6 +8,7 @@
 
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
+#include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/lanes.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
@@ -43,6 +44,15 @@ struct Data {
   std::vector<Matrix6<S>> U;                // Iᴬ S (first nv columns used)
   std::vector<Matrix6<S>> D_inv;            // (Sᵀ Iᴬ S)^-1 (top-left nv × nv block used)
   std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
+  // The ABA's gravity split (algorithms/gravity_split.hpp), in WiderScalar<S>: per body the
+  // gravitational acceleration in body coordinates, and the mass and first moment of mass of the
+  // subtree rooted at the body (body coordinates); entry 0 holds the base's gravity. Then
+  // τ − τ_g(q) rounded to S.
+  struct GravitySplitBody {
+    WiderScalar<S> gravity[3], first_moment[3], mass;
+  };
+  std::vector<GravitySplitBody> gravity_split;
+  VectorX<S> tau_less_gravity;
 
   // CRBA.
   // The packed CRBA's per-body state (algorithms/crba_packed.hpp; double only, empty otherwise):
@@ -94,6 +104,8 @@ struct Data {
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
+        gravity_split(model.nbodies()),
+        tau_less_gravity(VectorX<S>::Zero(model.nv)),
         packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),
         axis_base(model.nbodies(), Vector3<S>::Zero()),

@@ -195,6 +195,24 @@ inline DoubleDouble cos(const DoubleDouble& x) {
   return c;
 }
 
+/// About twice S's precision at a few operations each: double-double for double, double for
+/// float; any other scalar (float128, long double, double-double) is its own. The ABA forms
+/// τ − τ_g(q) in it (algorithms/gravity_split.hpp).
+template <class S>
+struct WiderScalarOf {
+  using type = S;
+};
+template <>
+struct WiderScalarOf<double> {
+  using type = DoubleDouble;
+};
+template <>
+struct WiderScalarOf<float> {
+  using type = double;
+};
+template <class S>
+using WiderScalar = typename WiderScalarOf<S>::type;
+
 }  // namespace spatial_dynamics
 
 namespace Eigen {

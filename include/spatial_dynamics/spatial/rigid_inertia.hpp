@@ -49,6 +49,18 @@ struct RigidInertia {
             mass * v.linear - cross_3d(first_moment, v.angular)};
   }
 
+  /// The velocity-product (bias) force v ×* I v (eq. 29 with a = 0), as
+  ///   (ω × Ī_O ω + h × (ω × v) ; m ω × v − ω × (h × ω)).
+  /// Expanding v ×* (I v) = (ω × n + v × f ; ω × f) with I v = (n ; f) gives the same terms plus
+  /// v × m v, which is zero but, computed, is the rounding of m v crossed with v: on a light body
+  /// far out on a fast chain that noise (ε m |v|²) outweighs the force. The two remaining terms
+  /// ω × (h × v) − v × (h × ω) are h × (ω × v) by the Jacobi identity.
+  SD_INLINE ForceVector<S> biasForce(const MotionVector<S>& v) const {
+    const Vector3<S> w_cross_v = cross_3d(v.angular, v.linear);
+    return {cross_3d(v.angular, Vector3<S>(rotational_inertia * v.angular)) + cross_3d(first_moment, w_cross_v),
+            mass * w_cross_v - cross_3d(v.angular, cross_3d(first_moment, v.angular))};
+  }
+
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
   RigidInertia& operator+=(const RigidInertia& o) {
     mass += o.mass;
