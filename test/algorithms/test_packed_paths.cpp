@@ -289,3 +289,55 @@ TEST(PackedPaths, BatchedRneaAgainstTheReference) {
     }
   }
 }
+
+// The ABA's gravity split on packed 3-vectors (gravity_split_packed.hpp) against the scalar split
+// from the same transforms: both form τ − τ_g in double-double and round once, so they agree to
+// the last bit but for the order of the low parts' sums (one unit in the last place). And the ABA
+// on this path within the anchors on the shared robots (test_gravity_split.cpp: scalar).
+TEST(PackedPaths, GravitySplitMatchesTheScalarSplit) {
+  SKIP_WITHOUT_AVX2_FMA();
+  sd::ModelBuildOptions floating;
+  floating.floating_base = true;
+  struct Case {
+    sd::Model<double> model;
+    double aba_bound;  // 0: not a shared robot
+  };
+  const std::vector<Case> cases = {
+      {sd::build_model_from_urdf_string(kEveryJointKindUrdf), 0},
+      {sd::build_model_from_urdf_file(sd_test::robot_path("panda.urdf")), 3.9e-14},
+      {sd::build_model_from_urdf_file(sd_test::robot_path("ur5.urdf")), 1.8e-14},
+      {sd::build_model_from_urdf_file(sd_test::robot_path("talos.urdf")), 9.2e-14},
+      {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating), 1.35e-13},
+      {sd::build_model_from_urdf_file(sd_test::robot_path("talos.urdf"), floating), 8.2e-13},
+  };
+  const double eps = std::numeric_limits<double>::epsilon();
+  std::mt19937 rng(29);
+  for (const Case& c : cases) {
+    const sd::Model<double>& model = c.model;
+    const sd::Model<sd::Quad> model_q = model.cast<sd::Quad>();
+    sd::Data<double> data(model);
+    sd::Data<sd::Quad> data_q(model_q);
+    int ulps = 0;
+    double worst_aba = 0;
+    for (int s = 0; s < 300; ++s) {
+      const VectorXd q = sd_test::random_configuration(model, rng);
+      const VectorXd qd = sd_test::random_vector(model.nv, rng);
+      const VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng));
+      const VectorXd qdd = sd::aba(model, data, q, qd, tau);
+      const VectorXd packed = data.tau_less_gravity;
+      sd::detail::gravity_split_start(model, data);  // the scalar split on the transforms aba left
+      for (int i = 1; i < model.nbodies(); ++i) sd::detail::gravity_split_outward(model, data, i);
+      for (int i = model.nbodies() - 1; i >= 1; --i) sd::detail::gravity_split_inward(model, data, i, sd::ConstVectorRef<double>(tau));
+      for (int k = 0; k < model.nv; ++k) {
+        const double difference = std::abs(packed[k] - data.tau_less_gravity[k]);
+        ASSERT_LE(difference, eps * std::abs(data.tau_less_gravity[k])) << "coordinate " << k;
+        ulps += difference > 0;
+      }
+      const sd::VectorX<sd::Quad> reference = sd::aba(model_q, data_q, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
+      worst_aba = std::max(worst_aba, sd::relative_error_to(qdd, reference));
+    }
+    std::printf("packed gravity split: %d coordinates one ulp from the scalar split; worst ABA error %.2e\n", ulps,
+                worst_aba);
+    if (c.aba_bound > 0) EXPECT_LE(worst_aba, c.aba_bound);
+  }
+}

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "spatial_dynamics/algorithms/gravity_split.hpp"
+#include "spatial_dynamics/algorithms/gravity_split_packed.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
@@ -41,11 +41,11 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
                                  const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext, bool split_gravity) {
   joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
-  if (split_gravity) gravity_split_start(model, data);
+  if (split_gravity) split_gravity_start(model, data);
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     body_up_transform(model, data, i, q.data(), data.X_up[i]);
-    if (split_gravity) gravity_split_outward(model, data, i);                    // g_i = E g_λ
+    if (split_gravity) split_gravity_outward(model, data, i);                    // g_i = E g_λ
     if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
       data.v[i] = one_dof_motion(j, qd[j.idx_v]);
       data.c[i] = MotionVector<S>::Zero();
@@ -78,7 +78,7 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
   for (int i = model.nbodies() - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
-    if (split_gravity) gravity_split_inward(model, data, i, tau_in);            // τ − τ_g at joint i
+    if (split_gravity) split_gravity_inward(model, data, i, tau_in);            // τ − τ_g at joint i
     Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place below
     const Vector6<S> pA = data.f[i].toVector();
     if (j.nv == 1) {

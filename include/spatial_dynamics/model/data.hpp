@@ -45,13 +45,17 @@ struct Data {
   std::vector<Matrix6<S>> D_inv;            // (Sᵀ Iᴬ S)^-1 (top-left nv × nv block used)
   std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
   // The ABA's gravity split (algorithms/gravity_split.hpp), in WiderScalar<S>: per body the
-  // gravitational acceleration in body coordinates, and the mass and first moment of mass of the
-  // subtree rooted at the body (body coordinates); entry 0 holds the base's gravity. Then
-  // τ − τ_g(q) rounded to S.
+  // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
+  // subtree rooted at the body; entry 0 holds the base's gravity. Then τ − τ_g(q) rounded to S.
   struct GravitySplitBody {
-    WiderScalar<S> gravity[3], first_moment[3], mass;
+    WiderScalar<S> gravity[3], moment[3], force[3];
   };
   std::vector<GravitySplitBody> gravity_split;
+  // The same on packed 3-vectors (algorithms/gravity_split_packed.hpp; double only, empty otherwise).
+  struct PackedGravitySplitBody {
+    Packed3Storage gravity_hi, gravity_lo, moment_hi, moment_lo, force_hi, force_lo;
+  };
+  std::vector<PackedGravitySplitBody> packed_gravity_split;
   VectorX<S> tau_less_gravity;
 
   // CRBA.
@@ -105,6 +109,7 @@ struct Data {
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         gravity_split(model.nbodies()),
+        packed_gravity_split(std::is_same<S, double>::value ? model.nbodies() : 0),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),
         packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),

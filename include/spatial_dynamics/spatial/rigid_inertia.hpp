@@ -56,9 +56,15 @@ struct RigidInertia {
   /// far out on a fast chain that noise (ε m |v|²) outweighs the force. The two remaining terms
   /// ω × (h × v) − v × (h × ω) are h × (ω × v) by the Jacobi identity.
   SD_INLINE ForceVector<S> biasForce(const MotionVector<S>& v) const {
-    const Vector3<S> w_cross_v = cross_3d(v.angular, v.linear);
-    return {cross_3d(v.angular, Vector3<S>(rotational_inertia * v.angular)) + cross_3d(first_moment, w_cross_v),
-            mass * w_cross_v - cross_3d(v.angular, cross_3d(first_moment, v.angular))};
+    const Vector3<S>& w = v.angular;
+    const Matrix3<S>& J = rotational_inertia;  // Ī_O ω written out: Eigen's product costs ~15 ns a body here
+    const Vector3<S> J_w(J(0, 0) * w.x() + J(0, 1) * w.y() + J(0, 2) * w.z(),
+                         J(1, 0) * w.x() + J(1, 1) * w.y() + J(1, 2) * w.z(),
+                         J(2, 0) * w.x() + J(2, 1) * w.y() + J(2, 2) * w.z());
+    const Vector3<S> w_cross_v = cross_3d(w, v.linear);
+    const Vector3<S> h_cross_w = cross_3d(first_moment, w);
+    return {Vector3<S>(cross_3d(w, J_w) + cross_3d(first_moment, w_cross_v)),
+            Vector3<S>(mass * w_cross_v - cross_3d(w, h_cross_w))};
   }
 
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
