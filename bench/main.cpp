@@ -23,6 +23,7 @@
 
 #include "allocation_counter.hpp"
 #include "benchmark_types.hpp"
+#include "random_states.hpp"
 #include "reference.hpp"
 #include "spatial_dynamics_adapter.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
@@ -130,32 +131,6 @@ std::vector<ModelSpec> default_models(const Settings& settings) {
     add("mass_span_200", sd::synthetic::random_chain(200, rng, options));
   }
   return specs;
-}
-
-std::vector<State> random_states(const sd::Model<double>& model, int count, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  sd::Data<double> data(model);
-  std::vector<State> states;
-  for (int s = 0; s < count; ++s) {
-    State st;
-    st.q.resize(model.nq);
-    for (int i = 1; i < model.nbodies(); ++i) {
-      const auto& j = model.joints[i];
-      if (j.type == sd::JointType::Free) {
-        for (int k = 0; k < 3; ++k) st.q[j.idx_q + k] = u(rng);
-        Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
-        st.q.segment<4>(j.idx_q + 3) = quat.normalized();
-      } else {
-        st.q[j.idx_q] = M_PI * u(rng);
-      }
-    }
-    st.qd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
-    st.qdd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
-    st.tau = sd::rnea(model, data, st.q, st.qd, st.qdd);
-    states.push_back(st);
-  }
-  return states;
 }
 
 double median(std::vector<double> v) {

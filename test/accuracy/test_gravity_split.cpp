@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <random>
 
+#include "random_states.hpp"  // bench/: the benchmark's states
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "test_utils.hpp"
 
@@ -22,43 +22,25 @@ struct RobotCase {
   double aba_bound;  // the best anchor's FD error on that row (or the best comparator's)
 };
 
-struct State {
-  Eigen::VectorXd q, qd, tau;
-};
-
-/// The benchmark's states: q uniform in (−π, π) (a unit quaternion for a free root), q̇, q̈ in
-/// (−1, 1), τ = RNEA(q, q̇, q̈) in double.
-std::vector<State> benchmark_states(const sd::Model<double>& model, int count) {
-  std::mt19937 rng(12345);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  sd::Data<double> data(model);
-  std::vector<State> states;
-  for (int s = 0; s < count; ++s) {
-    State st;
-    st.q.resize(model.nq);
-    for (int i = 1; i < model.nbodies(); ++i) {
-      const auto& j = model.joints[i];
-      if (j.type == sd::JointType::Free) {
-        for (int k = 0; k < 3; ++k) st.q[j.idx_q + k] = u(rng);
-        Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
-        st.q.segment<4>(j.idx_q + 3) = quat.normalized();
-      } else {
-        st.q[j.idx_q] = M_PI * u(rng);
-      }
-    }
-    st.qd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
-    const Eigen::VectorXd qdd = Eigen::VectorXd::NullaryExpr(model.nv, [&] { return u(rng); });
-    st.tau = sd::rnea(model, data, st.q, st.qd, qdd);
-    states.push_back(st);
+/// A case's model in double and float128, with their workspaces and the benchmark's states.
+struct Loaded {
+  explicit Loaded(const RobotCase& c, int states)
+      : model(sd::build_model_from_urdf_file(robot_path(c.file), options(c))),
+        model_q(model.cast<Quad>()),
+        data(model),
+        data_q(model_q),
+        pool(bench::random_states(model, states, 12345)) {}
+  static sd::ModelBuildOptions options(const RobotCase& c) {
+    sd::ModelBuildOptions o;
+    o.floating_base = c.floating;
+    return o;
   }
-  return states;
-}
-
-sd::Model<double> load(const RobotCase& c) {
-  sd::ModelBuildOptions options;
-  options.floating_base = c.floating;
-  return sd::build_model_from_urdf_file(robot_path(c.file), options);
-}
+  sd::Model<double> model;
+  sd::Model<Quad> model_q;
+  sd::Data<double> data;
+  sd::Data<Quad> data_q;
+  std::vector<bench::State> pool;
+};
 
 const std::vector<RobotCase>& cases() {
   static const std::vector<RobotCase> list = {
@@ -73,16 +55,13 @@ const std::vector<RobotCase>& cases() {
 TEST(GravitySplit, JointForcesLessGravityAgainstTheReference) {
   const double eps = std::numeric_limits<double>::epsilon();
   for (const RobotCase& c : cases()) {
-    const sd::Model<double> model = load(c);
-    const sd::Model<Quad> model_q = model.cast<Quad>();
-    sd::Data<double> data(model);
-    sd::Data<Quad> data_q(model_q);
+    Loaded l(c, 100);
     double worst = 0;
-    for (const State& st : benchmark_states(model, 100)) {
-      sd::aba(model, data, st.q, st.qd, st.tau);
-      const sd::VectorX<Quad> gravity = sd::gravity_torques(model_q, data_q, sd::to_quad(st.q));
+    for (const bench::State& st : l.pool) {
+      sd::aba(l.model, l.data, st.q, st.qd, st.tau);
+      const sd::VectorX<Quad> gravity = sd::gravity_torques(l.model_q, l.data_q, sd::to_quad(st.q));
       const sd::VectorX<Quad> expected = sd::to_quad(st.tau) - gravity;
-      const double error = static_cast<double>((sd::to_quad(data.tau_less_gravity) - expected).norm() / gravity.norm());
+      const double error = static_cast<double>((sd::to_quad(l.data.tau_less_gravity) - expected).norm() / gravity.norm());
       worst = std::max(worst, error);
     }
     std::printf("%s (%s): worst ‖τ − τ_g error‖ / ‖τ_g‖ = %.2e (%.1f ε)\n", c.file.c_str(),
@@ -96,14 +75,11 @@ TEST(GravitySplit, JointForcesLessGravityAgainstTheReference) {
 // states in the portable build, and with it 2.4e-14, 1.0e-14 and 4.3e-14.
 TEST(GravitySplit, AbaWithinTheAnchorsOnTheSharedRobots) {
   for (const RobotCase& c : cases()) {
-    const sd::Model<double> model = load(c);
-    const sd::Model<Quad> model_q = model.cast<Quad>();
-    sd::Data<double> data(model);
-    sd::Data<Quad> data_q(model_q);
+    Loaded l(c, 300);
     double worst = 0;
-    for (const State& st : benchmark_states(model, 300)) {
-      const sd::VectorX<Quad> reference = sd::aba(model_q, data_q, sd::to_quad(st.q), sd::to_quad(st.qd), sd::to_quad(st.tau));
-      worst = std::max(worst, sd::relative_error_to(sd::aba(model, data, st.q, st.qd, st.tau), reference));
+    for (const bench::State& st : l.pool) {
+      const sd::VectorX<Quad> reference = sd::aba(l.model_q, l.data_q, sd::to_quad(st.q), sd::to_quad(st.qd), sd::to_quad(st.tau));
+      worst = std::max(worst, sd::relative_error_to(sd::aba(l.model, l.data, st.q, st.qd, st.tau), reference));
     }
     std::printf("%s (%s): worst ABA error %.2e (bound %.2e)\n", c.file.c_str(), c.floating ? "floating" : "fixed", worst,
                 c.aba_bound);
