@@ -25,7 +25,8 @@ struct Data {
   std::vector<PluckerTransform<S>> X_base;  // ^iX_0: base coordinates → body i coordinates
   std::vector<PluckerTransform<S>> X_frame_base;  // ^FX_0 for every model frame
   std::vector<MotionVector<S>> v;           // body velocities (body coordinates)
-  std::vector<MotionVector<S>> a;           // body accelerations (bias-free in RNEA, c-free in ABA)
+  std::vector<MotionVector<S>> a;           // body accelerations (bias-free in RNEA, c-free in ABA;
+                                            // without gravity where the ABA splits it off)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations v_i × S_i q̇_i (ABA)
   std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
   // Revolute joints: the bodies they move, and sin and cos of each one's angle (entries of other
