@@ -33,12 +33,6 @@ SD_INLINE PackedDoubleDouble operator+(const PackedDoubleDouble& x, const Packed
   return add_product(x, y.hi, y.lo);
 }
 
-/// x + a ∘ b for double a and double-double b: the product's error from a fused multiply-add.
-SD_INLINE PackedDoubleDouble add_scaled(const PackedDoubleDouble& x, Packed3 a, Packed3 b_hi, Packed3 b_lo) {
-  const Packed3 p = a * b_hi;
-  return add_product(x, p, fma(a, b_lo, fma(a, b_hi, -p)));
-}
-
 /// a ∘ x for double a and double-double x.
 SD_INLINE PackedDoubleDouble scale(Packed3 a, const PackedDoubleDouble& x) {
   const Packed3 p = a * x.hi;
