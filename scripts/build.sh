@@ -19,6 +19,12 @@ while [ $# -gt 0 ]; do
   esac
 done
 mkdir -p "$build_dir"
+# Compiled objects are reused across build directories and fresh clones (ccache, installed by
+# install_dependencies.sh): paths below the repository root are hashed relative to it.
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+  cmake_args+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
 echo "building ${targets[*]:-all} in $build_dir/ ..."
 if ! { cmake -S . -B "$build_dir" -DPYTHON_EXECUTABLE=/usr/bin/python3 "${cmake_args[@]}" &&
        make -C "$build_dir" -j"$(nproc)" --no-print-directory "${targets[@]}"; } >"$build_dir/build.log" 2>&1; then

@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake catkin python3-catkin-pkg
+  build-essential cmake ccache catkin python3-catkin-pkg
   ros-core-dev libroscpp-dev librostest-dev python3-rostest
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libeigen3-dev libboost-dev
   googletest libgtest-dev

@@ -3,7 +3,7 @@
 # into build-fuzz/, then either fuzzes or replays the corpora.
 #   run_fuzzers.sh [SECONDS] [TARGET ...]
 #       fuzz each target for SECONDS (default 600), one after another on one core (nice -n 19),
-#       starting from its corpus, its seeds and (URDF target) the robots in ../shared/robots; then
+#       starting from its corpus, its seeds and (URDF target) the robots in urdf/; then
 #       merge everything into a minimised fuzz/<target>/corpus/ (libFuzzer -merge=1). Crashing
 #       inputs go to build-fuzz/artifacts/. Prints executions, corpus size and findings per target.
 #   run_fuzzers.sh replay [TARGET ...]
@@ -39,7 +39,7 @@ bash scripts/build.sh -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DSPATIAL_
 
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-robots_dir="${SD_ROBOTS_DIR:-../shared/robots}"
+robots_dir="${SD_ROBOTS_DIR:-urdf}"
 
 # Seed files of a target: its seeds/ directory and, for the URDF target, the shared robots.
 seed_files() {
