@@ -5,7 +5,8 @@
 //
 //   benchmark [--model PATH]... [--floating] [--quick] [--portable] [--out DIR]
 // Our rows come from a -march=native build of the adapter (native_adapter.hpp) when it is built,
-// or with --portable from this executable's own build (SSE2, like the comparators).
+// or with --portable from the package's default build: the compiled library's double instances with the
+// build chosen at run time from the CPU (simd_backend.hpp), as the node and every downstream program run them.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,7 @@
 #include "spatial_dynamics_adapter.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 #include "urdf_text.hpp"
 #ifdef SD_BENCH_WITH_NATIVE
@@ -60,7 +62,7 @@ struct Settings {
   std::vector<std::string> models;  // --model PATH (repeatable); empty: the default set
   bool floating = false;            // --floating: also run --model files with a free root
   bool quick = false;
-  bool portable = false;            // --portable: our rows from this executable's SSE2 build
+  bool portable = false;            // --portable: our rows from the package's default build (simd_backend.hpp)
   std::string out = "benchmark_results";
   // Derived from quick.
   int states = 1000;                // random states for the errors (and the timing pool)
@@ -84,7 +86,7 @@ struct Row {
   std::string library, algorithm, method, model, base, scalar;
   int dof = 0;
   double ns_median = 0, ns_min = 0, ns_max = 0, max_err = 0, median_err = 0, allocs = 0;
-  double max_err_first_100 = 0;  // over the first 100 states, as the issue's anchor table was measured
+  double max_err_first_100 = 0;  // over the first 100 states, as the peers' anchor figures were measured
   long calls = 0;
   int repeats = 0, error_states = 0;
   std::string failure;  // non-empty: the call failed (message), no figures
@@ -363,7 +365,7 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
   write_file(path, s.str());
 }
 
-/// The best forward-dynamics figure of the issue's anchor table (max over 100 states), by model.
+/// The best peer's forward-dynamics error (RBDL or Pinocchio against float128, max over 100 states), by model.
 const std::map<std::string, double>& anchor_fd() {
   static const std::map<std::string, double> anchors = {{"panda", 3.9e-14},      {"ur5", 1.8e-14},
                                                          {"talos", 9.2e-14},
@@ -417,10 +419,10 @@ std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec
   return s.str();
 }
 
-/// The issue's speed targets. Serial models (KDL took the chain solvers): our time over KDL's,
+/// Speed ratios and their targets. Serial models (KDL took the chain solvers): our time over KDL's,
 /// RNEA ≤ 0.30 × ChainIdSolver_RNE, ABA ≤ 0.33 × ChainFdSolver_RNE, CRBA ≤ 0.20 × JntToMass. Trees:
 /// RNEA ≤ 0.10 × TreeIdSolver_RNE; ABA and CRBA (no KDL solver) ≤ 0.8 × the best peer figure of
-/// the issue's table, rescaled by KDL's tree RNEA time in this run over the one in that table.
+/// the peers' table (RBDL, Pinocchio), rescaled by KDL's tree RNEA time in this run over the one measured beside it.
 struct PeerFigures {
   double kdl_tree_rnea_ns, fd_ns, crba_ns;
 };
@@ -501,7 +503,8 @@ std::string our_build_flags(const Settings& settings) {
   if (!settings.portable) return std::string(native_build_flags()) + " (a shared library of the benchmark's)";
 #endif
   (void)settings;
-  return std::string(kBuildFlags) + " (the benchmark executable)";
+  return std::string(kBuildFlags) + " (the package's default build: libspatial_dynamics, its " + simd_backend() +
+         " instances chosen at run time)";
 }
 
 void write_markdown(const std::string& path, const std::vector<Row>& rows, const std::vector<ModelSpec>& specs,
@@ -520,10 +523,11 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
     << " s per model (the states column). "
     << "Comparators: Debian's builds (SSE2, no FMA), called from adapters built with " << kBuildFlags << ". "
     << "spatial_dynamics rows: " << our_build_flags(settings) << ".\n\n";
-  s << "## Acceptance (issue: speed-against-error benchmark)\n\n" << acceptance(rows, specs) << "\n";
-  s << "## Speed targets (issue: speed)\n\nOur double time over the comparator's, both from this run; the best-peer figures "
-       "are the issue's table, rescaled by KDL's tree RNEA time in this run over the one in that table. Flags: as "
-       "above.\n\n" << speed_targets(rows, specs) << "\n";
+  s << "## Accuracy bounds\n\n" << acceptance(rows, specs) << "\n";
+  s << "## Speed ratios\n\nOur double time over the comparator's, both from this run; the best-peer figures are RBDL "
+       "3.3.1's and Pinocchio 3.7.0's (built from source with -O3 -march=native on this kind of machine; Debian packages "
+       "neither), rescaled by KDL's tree RNEA time in this run over the one measured beside them. Flags: as above.\n\n"
+    << speed_targets(rows, specs) << "\n";
   s << "## Comparators that could not load a model\n\n| library | model | why |\n|---|---|---|\n";
   for (const std::string& f : load_failures) s << "| " << f << " |\n";
   s << "\n## All rows\n\n| model | base | dof | library | scalar | algorithm | method | ns/call median (min–max) | "

@@ -9,6 +9,7 @@
 
 #include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 
 namespace spatial_dynamics {
@@ -65,10 +66,21 @@ void read_scene(const ros::NodeHandle& nh, SceneConfig& config) {
   }
 }
 
+/// The build of the compiled algorithms this process runs (simd_backend.hpp), or why there is none
+/// (a bad SPATIAL_DYNAMICS_SIMD, which every algorithm call then reports as well).
+std::string simd_backend_or_error() {
+  try {
+    return simd_backend();
+  } catch (const std::exception& e) {
+    return std::string("none: ") + e.what();
+  }
+}
+
 }  // namespace
 
 DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh)
     : nh_(nh), private_nh_(private_nh), tf_listener_(tf_buffer_), diagnostics_(nh, private_nh) {
+  ROS_INFO("dynamics: simd backend %s", simd_backend_or_error().c_str());
   private_nh_.param("publish_computed_torques", publish_computed_torques_, true);
   private_nh_.param("relock_tolerance", relock_tolerance_, 1e-6);
   private_nh_.param("max_state_age", max_state_age_, 1.0);
@@ -484,6 +496,7 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   const ros::WallTime now = ros::WallTime::now();
   const double elapsed = std::max(1e-9, (now - last_diag_time_).toSec());
   const long joint_states = joint_state_messages_, torques = torque_messages_;
+  status.add("simd backend", simd_backend_or_error());
   status.add("joint_states rate [Hz]", (joint_states - last_diag_joint_states_) / elapsed);
   status.add("computed_torques rate [Hz]", (torques - last_diag_torques_) / elapsed);
   last_diag_joint_states_ = joint_states;

@@ -1,17 +1,20 @@
 // Integration test: the node's services, computed-torque stream, joint_states merge, reload and
 // wrench transforms, checked against the library called directly in this process.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <condition_variable>
 #include <mutex>
 #include <numeric>
 
 #include "node_test_utils.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 using namespace sd_node_test;
 using Eigen::VectorXd;
@@ -369,6 +372,34 @@ TEST_F(NodeServices, ZReloadPicksUpANewRobotDescription) {
   back.request.position = std::vector<double>(model.nv, 0.0);
   back = call("mass_matrix", back);
   EXPECT_EQ(back.response.name, names);
+}
+
+TEST_F(NodeServices, DiagnosticsShowTheSimdBackend) {
+  // The node runs the same compiled library as this process, chosen from the same CPU and
+  // environment: its diagnostics name that build, which is the AVX2 one where the CPU has it.
+  std::mutex mutex;
+  std::string shown;
+  ros::Subscriber sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+        for (const auto& status : msg->status)
+          for (const auto& kv : status.values)
+            if (kv.key == "simd backend") {
+              std::lock_guard<std::mutex> lock(mutex);
+              shown = kv.value;
+            }
+      });
+  for (int k = 0; k < 200; ++k) {  // published once a second
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!shown.empty()) break;
+    }
+    ros::Duration(0.05).sleep();
+  }
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_EQ(shown, sd::simd_backend());
+  const char* forced = std::getenv("SPATIAL_DYNAMICS_SIMD");
+  if ((forced == nullptr || *forced == '\0') && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    EXPECT_EQ(shown, "avx2_fma");
 }
 
 int main(int argc, char** argv) {

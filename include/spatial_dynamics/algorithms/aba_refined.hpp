@@ -30,14 +30,17 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 #include "spatial_dynamics/spatial/double_double.hpp"
 
 namespace spatial_dynamics {
 
-/// The residual's wide type by default: double-double where the target has a fused multiply-add
-/// (its arithmetic then runs several times faster than long double's x87 code), long double
-/// elsewhere (double-double products without it cost more than x87's).
-using DefaultResidualScalar = std::conditional_t<kFusedMultiplyAdd, DoubleDouble, long double>;
+/// The residual's wide type by default: double-double, whose arithmetic runs several times faster
+/// than long double's x87 code where the CPU has a fused multiply-add, which the compiled
+/// library's AVX2 build uses (simd_backend.hpp). Without FMA its exact products take Dekker's
+/// splitting and cost more than x87's: RefinementWorkspace<S, long double> is the cheaper choice
+/// for the portable build on such a CPU.
+using DefaultResidualScalar = DoubleDouble;
 
 /// Buffers for aba_refined, allocated once per model (like Data, one per thread). Holds the
 /// model in the wider type W; converting double to long double or double-double is exact.
@@ -61,6 +64,7 @@ struct RefinementWorkspace {
   int iterations = 0;  // corrections applied by the last call
   S first_correction = S(0);  // ‖δ₀‖/‖x‖ of the last call: the unrefined result's relative error
   S effort_norm = S(0);       // ‖τ‖ of the last call
+  S rate = S(0);              // ρ, one solve's relative error, as the last call estimated it
 
   explicit RefinementWorkspace(const Model<S>& model)
       : model_wide(model.template cast<W>()),
@@ -469,7 +473,7 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
 template <class S, class W>
 void aba_with_wide_residual(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
                             const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
-  aba(model, data, q, qd, tau);
+  aba<S>(model, data, q, qd, tau);
   ws.effort_norm = tau.norm();
   for (int k = 0; k < model.nq; ++k) ws.q_wide[k] = W(q[k]);
   for (int k = 0; k < model.nv; ++k) {
@@ -488,8 +492,8 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
                               const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
                               const ConstVectorRef<S>& tau, int max_iterations = 8) {
   detail::aba_with_wide_residual(model, data, ws, q, qd, tau);
-  S rate(0);
-  detail::refine(model, data, ws, max_iterations, rate);
+  ws.rate = S(0);
+  detail::refine(model, data, ws, max_iterations, ws.rate);
   for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(ws.x_wide[k]);
   return data.qdd;
 }
@@ -502,10 +506,9 @@ template <class S, class W, class F>
 const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWorkspace<S, W>& ws,
                               RefinementWorkspace<S, F>& fine, const ConstVectorRef<S>& q,
                               const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau, int max_iterations = 8) {
-  detail::aba_with_wide_residual(model, data, ws, q, qd, tau);
-  S rate(0);
-  detail::refine(model, data, ws, max_iterations, rate);
+  aba_refined(model, data, ws, q, qd, tau, max_iterations);  // the library's build for double
   fine.iterations = 0;
+  S rate = ws.rate;
   const S eps = Eigen::NumTraits<S>::epsilon();
   if (rate * S(detail::residual_epsilon<W>() / W(eps)) > eps) {
     for (int k = 0; k < model.nq; ++k) fine.q_wide[k] = F(q[k]);
@@ -516,10 +519,20 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
     detail::wide_residual(model, fine, tau);
     detail::refine(model, data, fine, max_iterations, rate);
     for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(fine.x_wide[k]);
-  } else {
-    for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(ws.x_wide[k]);
   }
   return data.qdd;
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
+                                   RefinementWorkspace<double, DoubleDouble>& ws, const ConstVectorRef<double>& q,
+                                   const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
+                                   int max_iterations = 8);
+const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
+                                   RefinementWorkspace<double, long double>& ws, const ConstVectorRef<double>& q,
+                                   const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
+                                   int max_iterations = 8);
+#endif
 
 }  // namespace spatial_dynamics

@@ -17,7 +17,7 @@ namespace detail {
 template <class S>
 SD_INLINE void carry_over_revolute_run(const Model<S>& model, Data<S>& data, const Vector3<S>& n, const Vector3<S>& f,
                                        const Vector3<S>& p_i, int first, int last, int col) {
-  constexpr int L = kDefaultBatchLanes<S>;
+  constexpr int L = kRegisterLanes<S>;
   using Lane = Lanes<S, L>;
   const int stride = static_cast<int>(data.base_origin_and_axis.size()) / 6;
   const S* soa = data.base_origin_and_axis.data();

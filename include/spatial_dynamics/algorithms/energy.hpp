@@ -12,7 +12,7 @@ namespace spatial_dynamics {
 /// T = Σ ½ v_i · I_i v_i.
 template <class S>
 S kinetic_energy(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd) {
-  forward_kinematics(model, data, q, qd);
+  forward_kinematics<S>(model, data, q, qd);
   S T(0);
   for (int i = 1; i < model.nbodies(); ++i) T += kinetic_energy(model.inertia[i], data.v[i]);
   detail::check_finite_value(model, "kinetic energy", Eigen::Matrix<S, 1, 1>::Constant(T));
@@ -23,7 +23,7 @@ S kinetic_energy(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& 
 template <class S>
 ForceVector<S> total_momentum(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                               const ConstVectorRef<S>& qd) {
-  forward_kinematics(model, data, q, qd);
+  forward_kinematics<S>(model, data, q, qd);
   ForceVector<S> h = ForceVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) h += data.X_base[i].applyInverse(momentum(model.inertia[i], data.v[i]));
   detail::check_finite_value(model, "total momentum", h.toVector());

@@ -10,6 +10,7 @@
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
@@ -21,7 +22,7 @@ const VectorX<S>& crba_forward_dynamics(const Model<S>& model, Data<S>& data, co
   check_length("effort", tau.size(), model.nv);
   rnea_dispatch(model, data, q, qd, data.zero_v, f_ext);  // h = C q̇ + g − Jᵀ f_ext
   data.qdd = tau - data.tau;
-  data.llt.compute(crba(model, data, q));
+  data.llt.compute(crba<S>(model, data, q));
   if (data.llt.info() != Eigen::Success)
     throw std::domain_error("the mass matrix is not positive definite (a massless subtree?): forward dynamics is undefined");
   data.llt.solveInPlace(data.qdd);
@@ -35,7 +36,7 @@ const VectorX<S>& crba_forward_dynamics(const Model<S>& model, Data<S>& data, co
 template <class S>
 const VectorX<S>& forward_dynamics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                    const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
-  if (!model.has_coupled_joints) return aba(model, data, q, qd, tau);
+  if (!model.has_coupled_joints) return aba<S>(model, data, q, qd, tau);
   return detail::crba_forward_dynamics(model, data, q, qd, tau, static_cast<const ForceVector<S>*>(nullptr));
 }
 
@@ -44,9 +45,18 @@ template <class S>
 const VectorX<S>& forward_dynamics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                    const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
                                    const std::vector<ForceVector<S>>& f_ext) {
-  if (!model.has_coupled_joints) return aba(model, data, q, qd, tau, f_ext);
+  if (!model.has_coupled_joints) return aba<S>(model, data, q, qd, tau, f_ext);
   detail::check_external_forces(model, f_ext);
   return detail::crba_forward_dynamics(model, data, q, qd, tau, f_ext.data());
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                                        const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau);
+const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                                        const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
+                                        const std::vector<ForceVector<double>>& f_ext);
+#endif
 
 }  // namespace spatial_dynamics

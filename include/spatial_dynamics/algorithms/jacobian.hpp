@@ -8,6 +8,7 @@
 #include "spatial_dynamics/algorithms/kinematics.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
 
@@ -20,7 +21,7 @@ enum class ReferenceFrame {
 template <class S>
 const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, int frame,
                                   ReferenceFrame reference) {
-  forward_kinematics(model, data, q);
+  forward_kinematics<S>(model, data, q);
   data.J.setZero();
   PluckerTransform<S> X_F0 = data.X_frame_base[frame];
   if (reference == ReferenceFrame::RootAligned) X_F0 = PluckerTransform<S>(X_F0.E.transpose(), Vector3<S>::Zero()) * X_F0;
@@ -34,5 +35,11 @@ const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const Co
   detail::check_finite_result(model, "frame Jacobian: the column", data.J);
   return data.J;
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+const Matrix6X<double>& frame_jacobian(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                                       int frame, ReferenceFrame reference);
+#endif
 
 }  // namespace spatial_dynamics

@@ -255,7 +255,7 @@ SD_INLINE S joint_coordinate(const Joint<S>& j, const S* q) {
 /// passes. Scalars without vector lanes take one angle at a time.
 template <class S>
 SD_INLINE void joint_sines_and_cosines(const Model<S>& model, Data<S>& data, const S* q) {
-  constexpr int L = std::is_same<S, double>::value ? kDefaultBatchLanes<S> : 1;  // vector sin/cos: double only
+  constexpr int L = std::is_same<S, double>::value ? kRegisterLanes<S> : 1;  // vector sin/cos: double only
   const int count = static_cast<int>(data.revolute_bodies.size());
   for (int start = 0; start < count; start += L) {
     const int lanes = std::min(L, count - start);

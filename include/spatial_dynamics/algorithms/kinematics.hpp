@@ -6,6 +6,7 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
 
@@ -43,7 +44,7 @@ template <class S>
 void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                         const ConstVectorRef<S>& qd) {
   detail::check_length("velocity", qd.size(), model.nv);
-  forward_kinematics(model, data, q);
+  forward_kinematics<S>(model, data, q);
   data.v[0] = MotionVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) {
     data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model.joints[i], qd.data());
@@ -52,5 +53,12 @@ void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorR
                               detail::non_finite_reason());
   }
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+void forward_kinematics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q);
+void forward_kinematics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                        const ConstVectorRef<double>& qd);
+#endif
 
 }  // namespace spatial_dynamics

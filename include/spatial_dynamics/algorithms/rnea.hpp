@@ -10,6 +10,7 @@
 #include "spatial_dynamics/algorithms/rnea_packed.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
@@ -151,7 +152,19 @@ const VectorX<S>& gravity_torques(const Model<S>& model, Data<S>& data, const Co
 template <class S>
 const VectorX<S>& nonlinear_effects(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                     const ConstVectorRef<S>& qd) {
-  return rnea(model, data, q, qd, data.zero_v);
+  return rnea<S>(model, data, q, qd, data.zero_v);
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                            const ConstVectorRef<double>& qd, const ConstVectorRef<double>& qdd);
+const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
+                            const ConstVectorRef<double>& qd, const ConstVectorRef<double>& qdd,
+                            const std::vector<ForceVector<double>>& f_ext);
+const VectorX<double>& gravity_torques(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q);
+const VectorX<double>& nonlinear_effects(const Model<double>& model, Data<double>& data,
+                                         const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd);
+#endif
 
 }  // namespace spatial_dynamics

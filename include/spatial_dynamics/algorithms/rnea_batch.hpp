@@ -19,6 +19,7 @@
 #include "spatial_dynamics/algorithms/rnea.hpp"
 #include "spatial_dynamics/model/batch_data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
 
@@ -148,7 +149,7 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
     // body_up_transform … store_joint_force); such models take the one-state RNEA per state.
     for (Eigen::Index c = 0; c < n; ++c) {
       try {
-        tau.col(c) = rnea(model, data.single, q.col(c), qd.col(c), qdd.col(c));
+        tau.col(c) = rnea<S>(model, data.single, q.col(c), qd.col(c), qdd.col(c));
       } catch (const std::domain_error& e) {
         throw std::domain_error(detail::at_state(c, e.what()));
       } catch (const std::invalid_argument& e) {
@@ -166,5 +167,12 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
     if (!detail::lanes_all_finite(data.tau.data(), model.nv)) detail::check_finite_columns(model, tau, c0, count);
   }
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+void rnea_batch(const Model<double>& model, BatchData<double, kDefaultBatchLanes<double>>& data,
+                const ConstMatrixRef<double>& q, const ConstMatrixRef<double>& qd, const ConstMatrixRef<double>& qdd,
+                MatrixRef<double> tau);
+#endif
 
 }  // namespace spatial_dynamics

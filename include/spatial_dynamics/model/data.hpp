@@ -115,7 +115,7 @@ struct Data {
         packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),
         axis_base(model.nbodies(), Vector3<S>::Zero()),
-        base_origin_and_axis(6 * (model.nbodies() + kDefaultBatchLanes<S>), S(0)),
+        base_origin_and_axis(6 * (model.nbodies() + kWidestLanes<S>), S(0)),
         revolute_run_start(model.nbodies(), 0),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),

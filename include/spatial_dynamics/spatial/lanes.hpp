@@ -35,12 +35,30 @@ constexpr int kSimdBytes = 32;
 constexpr int kSimdBytes = 16;  // SSE2 (every x86-64), NEON
 #endif
 
-/// States evaluated together by default: as many as fill one vector register (2 doubles with
-/// SSE2, 4 with AVX, 8 with AVX-512). More lanes than a register holds measured slower: the lanes
-/// no longer fit in the registers (the batched RNEA on the Panda: 8 double lanes with AVX2,
-/// 268 ns per state against 109 ns with 4; 16 with AVX-512, 137 ns against 91 ns with 8).
+/// Scalars that fill one vector register of this build (2 doubles with SSE2, 4 with AVX, 8 with
+/// AVX-512): the lane count of the vectorised steps inside one-state algorithms (joint sines and
+/// cosines, the CRBA's carry over revolute runs).
 template <class S>
-constexpr int kDefaultBatchLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
+constexpr int kRegisterLanes = sizeof(S) < kSimdBytes ? static_cast<int>(kSimdBytes / sizeof(S)) : 1;
+
+/// States evaluated together by default (BatchData): one 256-bit register's worth at least on
+/// x86-64, whatever this translation unit's flags, since the compiled library runs its AVX2 build
+/// where the CPU has it (simd_backend.hpp); more with AVX-512. More lanes than a register holds
+/// measured slower: the lanes no longer fit in the registers (the batched RNEA on the Panda: 8
+/// double lanes with AVX2, 268 ns per state against 109 ns with 4; 16 with AVX-512, 137 ns
+/// against 91 ns with 8).
+#if defined(__x86_64__)
+constexpr int kBatchBytes = kSimdBytes > 32 ? kSimdBytes : 32;
+#else
+constexpr int kBatchBytes = kSimdBytes;
+#endif
+template <class S>
+constexpr int kDefaultBatchLanes = sizeof(S) < kBatchBytes ? static_cast<int>(kBatchBytes / sizeof(S)) : 1;
+
+/// The widest register's worth of lanes of any build (AVX-512): what a buffer that a vectorised
+/// step reads in blocks is padded by, so that every build may read it.
+template <class S>
+constexpr int kWidestLanes = sizeof(S) < 64 ? static_cast<int>(64 / sizeof(S)) : 1;
 
 namespace detail {
 
@@ -59,8 +77,11 @@ struct LaneStorage {
   S v[L];
 };
 #if defined(__GNUC__)
+// The alignment is spelled out: a vector type's own alignment follows the instruction set (16
+// bytes for 4 doubles without AVX, 32 with it), and the layout of the batch workspace must be the
+// same in the portable and AVX2 builds of the compiled library (simd_backend.hpp).
 template <class S, int L>
-struct LaneStorage<S, L, true> {
+struct alignas(sizeof(S) * L < 64 ? sizeof(S) * L : 64) LaneStorage<S, L, true> {
   typedef S Vector __attribute__((vector_size(sizeof(S) * L)));  // one SIMD value (or a few, split)
   Vector v;
 };
