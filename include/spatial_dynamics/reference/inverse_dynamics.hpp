@@ -24,7 +24,7 @@ VecX<S> inverse_dynamics(const Model<S>& model, const VectorArg<S>& q, const Vec
     throw std::invalid_argument("reference: one external force per body (entry 0 unused)");
   const int n = model.nbodies();
   const CoordinateMap<S> map = coordinate_map(model);
-  const VecX<S> qd_full = map.expand(qd), qdd_full = map.expand(qdd);                 // every body's own q̇_i, q̈_i
+  const VecX<S> qd_full = map.expand(qd), qdd_full = map.expand(qdd);        // every body's q̇_i = (G q̇)_i, q̈_i
   const std::vector<Mat6<S>> X_up = up_transforms(model, q);                  // ^iX_λ(i) = X_J X_T(i)
   std::vector<Vec6<S>> v(n, Vec6<S>::Zero()), a(n, Vec6<S>::Zero()), f(n, Vec6<S>::Zero());
   a[0] = -gravity_acceleration<S>(model.gravity);                              // v_0 = 0, a_0 = −a_g
@@ -36,6 +36,7 @@ VecX<S> inverse_dynamics(const Model<S>& model, const VectorArg<S>& q, const Vec
     const int lambda = model.parent[i];
     v[i] = X_up[i] * v[lambda] + vJ;                                           // v_i = ^iX_λ v_λ + v_J
     a[i] = X_up[i] * a[lambda] + aJ + crm(v[i]) * vJ;                          // a_i = ^iX_λ a_λ + S q̈ + v_i × v_J
+                                                                               //       (+ c_J, 0 for these joints)
     const Mat6<S> I = body_inertia(model, i);                                  // I_i in body coordinates
     f[i] = I * a[i] + crf(v[i]) * (I * v[i]);                                  // f_i = I_i a_i + v_i ×* I_i v_i
     if (!f_ext.empty()) f[i] -= f_ext[i].toVector();                           //       − f_i^x (body coordinates)
