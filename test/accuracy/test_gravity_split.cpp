@@ -1,12 +1,15 @@
-// The ABA's gravity split (algorithms/gravity_split.hpp) against the float128 reference: the
-// joint forces it hands the passes, τ − τ_g(q), and the accelerations it reaches on the shared
-// robots, which the anchors bound (Pinocchio's and RBDL's FD, max over their states).
+// The ABA's gravity split (algorithms/gravity_split.hpp) against the float128 reference
+// (reference/: RNEA and ABA on 6×6 matrices): the joint forces it hands the passes, τ − τ_g(q),
+// and the accelerations it reaches on the shared robots, which the anchors bound
+// (Pinocchio's and RBDL's FD, max over their states).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "random_states.hpp"  // bench/: the benchmark's states
+#include "spatial_dynamics/reference/forward_dynamics.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
+#include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "test_utils.hpp"
 
 namespace sd = spatial_dynamics;
@@ -22,13 +25,12 @@ struct RobotCase {
   double aba_bound;  // the best anchor's FD error on that row (or the best comparator's)
 };
 
-/// A case's model in double and float128, with their workspaces and the benchmark's states.
+/// A case's model in double and float128, the double workspace and the benchmark's states.
 struct Loaded {
   explicit Loaded(const RobotCase& c, int states)
       : model(sd::build_model_from_urdf_file(robot_path(c.file), options(c))),
         model_q(model.cast<Quad>()),
         data(model),
-        data_q(model_q),
         pool(bench::random_states(model, states, 12345)) {}
   static sd::ModelBuildOptions options(const RobotCase& c) {
     sd::ModelBuildOptions o;
@@ -38,7 +40,6 @@ struct Loaded {
   sd::Model<double> model;
   sd::Model<Quad> model_q;
   sd::Data<double> data;
-  sd::Data<Quad> data_q;
   std::vector<bench::State> pool;
 };
 
@@ -59,7 +60,7 @@ TEST(GravitySplit, JointForcesLessGravityAgainstTheReference) {
     double worst = 0;
     for (const bench::State& st : l.pool) {
       sd::aba(l.model, l.data, st.q, st.qd, st.tau);
-      const sd::VectorX<Quad> gravity = sd::gravity_torques(l.model_q, l.data_q, sd::to_quad(st.q));
+      const sd::VectorX<Quad> gravity = sd::reference::gravity_torques(l.model_q, sd::to_quad(st.q));
       const sd::VectorX<Quad> expected = sd::to_quad(st.tau) - gravity;
       const double error = static_cast<double>((sd::to_quad(l.data.tau_less_gravity) - expected).norm() / gravity.norm());
       worst = std::max(worst, error);
@@ -78,7 +79,8 @@ TEST(GravitySplit, AbaWithinTheAnchorsOnTheSharedRobots) {
     Loaded l(c, 300);
     double worst = 0;
     for (const bench::State& st : l.pool) {
-      const sd::VectorX<Quad> reference = sd::aba(l.model_q, l.data_q, sd::to_quad(st.q), sd::to_quad(st.qd), sd::to_quad(st.tau));
+      const sd::VectorX<Quad> reference =
+          sd::reference::forward_dynamics(l.model_q, sd::to_quad(st.q), sd::to_quad(st.qd), sd::to_quad(st.tau));
       worst = std::max(worst, sd::relative_error_to(sd::aba(l.model, l.data, st.q, st.qd, st.tau), reference));
     }
     std::printf("%s (%s): worst ABA error %.2e (bound %.2e)\n", c.file.c_str(), c.floating ? "floating" : "fixed", worst,

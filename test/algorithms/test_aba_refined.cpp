@@ -1,9 +1,10 @@
-// Forward dynamics with iterative refinement (aba_refined) against the float128 reference: on
-// every shared robot, fixed and floating base, it reaches the double rounding level, and with the
-// float128 escalation it does so on states whose long double residual cannot (tiny q̈ against
-// large forces) and on an ill-conditioned random chain; with long double and with double-double
-// residuals; a float model refines too; a massless leaf still fails naming the joint. The long
-// double sin and cos are checked against float128.
+// Forward dynamics with iterative refinement (aba_refined) against the float128 reference
+// (reference/forward_dynamics.hpp, the ABA on 6×6 matrices): on every shared robot, fixed and
+// floating base, it reaches the double rounding level, and with the float128 escalation it does
+// so on states whose long double residual cannot (tiny q̈ against large forces) and on an
+// ill-conditioned random chain; with long double and with double-double residuals; a float model
+// refines too; a massless leaf still fails naming the joint. The long double sin and cos are
+// checked against float128.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -12,6 +13,7 @@
 #include <cstdio>
 
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
+#include "spatial_dynamics/reference/forward_dynamics.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
 #include "test_utils.hpp"
@@ -46,14 +48,13 @@ void refine_and_measure(const sd::Model<double>& model, sd::Data<double>& data, 
 
 /// Max relative errors of aba and aba_refined (long double and double-double residuals) over
 /// `states` random states (q̇ ∈ U(−1, 1), q̈ ∈ U(−s, s) for s = qdd_scale, τ = RNEA(q, q̇, q̈) in
-/// double), against ABA in float128 on the same (exactly converted) inputs.
+/// double), against the reference ABA in float128 on the same (exactly converted) inputs.
 Errors measure(const sd::Model<double>& model, int states, unsigned seed, double qdd_scale = 1.0) {
   sd::Data<double> data(model);
   sd::RefinementWorkspace<double, long double> ws_long_double(model);
   sd::RefinementWorkspace<double, sd::DoubleDouble> ws_double_double(model);
   sd::RefinementWorkspace<double, sd::Quad> fine(model);
   const sd::Model<sd::Quad> reference_model = model.cast<sd::Quad>();
-  sd::Data<sd::Quad> reference_data(reference_model);
   std::mt19937 rng(seed);
   Errors e;
   for (int s = 0; s < states; ++s) {
@@ -61,7 +62,7 @@ Errors measure(const sd::Model<double>& model, int states, unsigned seed, double
     const VectorXd qd = sd_test::random_vector(model.nv, rng);
     const VectorXd tau = sd::rnea(model, data, q, qd, sd_test::random_vector(model.nv, rng, qdd_scale));
     const sd::VectorX<sd::Quad> reference =
-        sd::aba(reference_model, reference_data, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
+        sd::reference::forward_dynamics(reference_model, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
     e.plain = std::max(e.plain, sd::relative_error_to(sd::aba(model, data, q, qd, tau), reference));
     refine_and_measure(model, data, ws_long_double, fine, q, qd, tau, reference, e.long_double);
     refine_and_measure(model, data, ws_double_double, fine, q, qd, tau, reference, e.double_double);
@@ -180,14 +181,14 @@ TEST(RefinedFloat, RefinesAFloatModelToFloatRounding) {
   sd::Data<float> data(model);
   sd::RefinementWorkspace<float> ws(model);
   const sd::Model<sd::Quad> reference_model = model.cast<sd::Quad>();
-  sd::Data<sd::Quad> reference_data(reference_model);
   std::mt19937 rng(13);
   double plain = 0, refined = 0;
   for (int s = 0; s < 50; ++s) {
     const Eigen::VectorXf q = sd_test::random_configuration(model_d, rng).cast<float>();
     const Eigen::VectorXf qd = sd_test::random_vector(model.nv, rng).cast<float>();
     const Eigen::VectorXf tau = sd::rnea(model, data, q, qd, Eigen::VectorXf(sd_test::random_vector(model.nv, rng).cast<float>()));
-    const sd::VectorX<sd::Quad> reference = sd::aba(reference_model, reference_data, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
+    const sd::VectorX<sd::Quad> reference =
+        sd::reference::forward_dynamics(reference_model, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
     plain = std::max(plain, sd::relative_error_to(sd::aba(model, data, q, qd, tau), reference));
     refined = std::max(refined, sd::relative_error_to(sd::aba_refined(model, data, ws, q, qd, tau), reference));
   }
