@@ -3,7 +3,7 @@
 // states, timed per call and checked against the float128 reference. Writes results.csv,
 // results.md, and through plot.py and summary.py benchmark.png and summary.md, into --out DIR.
 //
-//   benchmark [--model PATH]... [--floating] [--quick] [--portable] [--out DIR]
+//   benchmark [--model PATH]... [--floating] [--quick] [--portable | --default-build] [--out DIR]
 // Our rows come from a -march=native build of the adapter (native_adapter.hpp) when it is built,
 // or with --portable from the package's default build: the compiled library's double instances with the
 // build chosen at run time from the CPU (simd_backend.hpp), as the node and every downstream program run them.
@@ -63,6 +63,7 @@ struct Settings {
   bool floating = false;            // --floating: also run --model files with a free root
   bool quick = false;
   bool portable = false;            // --portable: our rows from the package's default build (simd_backend.hpp)
+  bool default_build = false;       // --default-build: beside the -march=native rows, the default build's in double
   std::string out = "benchmark_results";
   // Derived from quick.
   int states = 1000;                // random states for the errors (and the timing pool)
@@ -200,6 +201,32 @@ void time_interleaved(std::vector<Timing>& timings, int pool, const Settings& se
   }
 }
 
+/// The package's default build (the compiled library, its build chosen at run time) under a
+/// library name of its own, for rows beside the -march=native ones of the same run.
+class DefaultBuildAdapter : public SpatialDynamicsAdapter<double> {
+ public:
+  using SpatialDynamicsAdapter<double>::SpatialDynamicsAdapter;
+  std::string library() const override { return "spatial_dynamics_default_build"; }
+};
+
+/// Per model and algorithm, the default build's time over the -march=native build's, both from this run.
+std::string default_build_ratios(const std::vector<Row>& rows) {
+  std::ostringstream s;
+  s << "| model | base | algorithm | -march=native (ns) | default build (ns) | ratio |\n|---|---|---|---|---|---|\n";
+  char line[256];
+  for (const Row& d : rows) {
+    if (d.library != "spatial_dynamics_default_build" || !d.failure.empty()) continue;
+    for (const Row& n : rows)
+      if (n.library == "spatial_dynamics" && n.scalar == "double" && n.algorithm == d.algorithm && n.model == d.model &&
+          n.base == d.base && n.failure.empty()) {
+        std::snprintf(line, sizeof line, "| %s | %s | %s | %.0f | %.0f | %.3f |\n", d.model.c_str(), d.base.c_str(),
+                      d.algorithm.c_str(), n.ns_median, d.ns_median, d.ns_median / n.ns_median);
+        s << line;
+      }
+  }
+  return s.str();
+}
+
 struct Loaded {
   std::unique_ptr<Adapter> adapter;
   std::string library, why;
@@ -213,6 +240,8 @@ std::vector<Loaded> load_adapters(const sd::Model<double>& model, const ModelSpe
     out.push_back({make_native_spatial_dynamics_adapter(model, true), "spatial_dynamics", ""});
   }
 #endif
+  if (!out.empty() && settings.default_build)
+    out.push_back({std::make_unique<DefaultBuildAdapter>(model), "spatial_dynamics_default_build", ""});
   if (out.empty()) {
     out.push_back({std::make_unique<SpatialDynamicsAdapter<double>>(model), "spatial_dynamics", ""});
     out.push_back({std::make_unique<SpatialDynamicsAdapter<float>>(model), "spatial_dynamics", ""});
@@ -503,7 +532,7 @@ std::string our_build_flags(const Settings& settings) {
   if (!settings.portable) return std::string(native_build_flags()) + " (a shared library of the benchmark's)";
 #endif
   (void)settings;
-  return std::string(kBuildFlags) + " (the package's default build: libspatial_dynamics, its " + simd_backend() +
+  return std::string(kBuildFlags) + " (the package's default build: libspatial_dynamics, its " + sd::simd_backend() +
          " instances chosen at run time)";
 }
 
@@ -528,6 +557,10 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
        "3.3.1's and Pinocchio 3.7.0's (built from source with -O3 -march=native on this kind of machine; Debian packages "
        "neither), rescaled by KDL's tree RNEA time in this run over the one measured beside them. Flags: as above.\n\n"
     << speed_targets(rows, specs) << "\n";
+  if (settings.default_build)
+    s << "## The default build against -march=native\n\nThe package's default build (`spatial_dynamics_default_build`: "
+         "libspatial_dynamics, its " << sd::simd_backend() << " instances chosen at run time) over our -march=native rows, "
+         "both from this run.\n\n" << default_build_ratios(rows) << "\n";
   s << "## Comparators that could not load a model\n\n| library | model | why |\n|---|---|---|\n";
   for (const std::string& f : load_failures) s << "| " << f << " |\n";
   s << "\n## All rows\n\n| model | base | dof | library | scalar | algorithm | method | ns/call median (min–max) | "
@@ -549,7 +582,8 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
 }
 
 int usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--model PATH]... [--floating] [--quick] [--portable] [--out DIR]\n", argv0);
+  std::fprintf(stderr, "usage: %s [--model PATH]... [--floating] [--quick] [--portable | --default-build] [--out DIR]\n",
+               argv0);
   return 2;
 }
 
@@ -565,6 +599,7 @@ int main(int argc, char** argv) {
     else if (arg == "--out" && i + 1 < argc) settings.out = argv[++i];
     else if (arg == "--quick") settings.quick = true;
     else if (arg == "--portable") settings.portable = true;
+    else if (arg == "--default-build") settings.default_build = true;
     else if (arg == "--floating") settings.floating = true;
     else return usage(argv[0]);
   }
@@ -603,6 +638,7 @@ int main(int argc, char** argv) {
   write_csv(settings.out + "/results.csv", rows);
   write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
   std::printf("\nSpeed targets\n\n%s\n", speed_targets(rows, specs).c_str());
+  if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
   std::printf("wrote %s/results.csv and results.md (%zu rows) in %.0f s\n", settings.out.c_str(), rows.size(),
               std::chrono::duration<double>(Clock::now() - start).count());
   const std::string plot = std::string("/usr/bin/python3 ") + SD_BENCH_PLOT_SCRIPT + " " + settings.out + "/results.csv " +
