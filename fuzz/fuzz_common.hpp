@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "spatial_dynamics/algorithms.hpp"
+#include "test_paths.hpp"
 
 namespace sd_fuzz {
 

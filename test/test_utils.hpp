@@ -8,12 +8,13 @@
 
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
+#include "test_paths.hpp"
 
 namespace sd_test {
 
 namespace sd = spatial_dynamics;
 
-inline std::string robot_path(const std::string& file) { return std::string(SD_ROBOTS_DIR) + "/" + file; }
+inline std::string robot_path(const std::string& file) { return std::string(robots_dir()) + "/" + file; }
 
 /// Every robot of the shared set, by file name.
 inline const std::vector<std::string>& robot_files() {

@@ -36,7 +36,7 @@ const std::vector<Robot>& robots() {
     sd::ModelBuildOptions floating;
     floating.floating_base = true;
     for (const char* file : {"double_pendulum.urdf", "panda.urdf", "ur5.urdf", "solo12.urdf", "talos.urdf"}) {
-      const std::string path = std::string(SD_ROBOTS_DIR) + "/" + file;
+      const std::string path = std::string(sd_test::robots_dir()) + "/" + file;
       list.push_back({sd::build_model_from_urdf_file(path), sd::build_model_from_urdf_file(path, floating)});
     }
     const std::string mobile = sd_test::mobile_manipulator_urdf();

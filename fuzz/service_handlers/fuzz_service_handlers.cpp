@@ -25,6 +25,7 @@
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/ros/service_handlers.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
+#include "test_paths.hpp"
 
 namespace sd = spatial_dynamics;
 
@@ -67,7 +68,7 @@ std::shared_ptr<const sd::ServedScene> make_scene(const std::shared_ptr<const sd
 Fixture& fixture() {
   static Fixture f = [] {
     Fixture fx;
-    std::ifstream file(SD_FUZZ_ROBOT_URDF);
+    std::ifstream file(std::string(sd_test::robots_dir()) + "/panda.urdf");
     const std::string urdf((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     auto robot = std::make_shared<sd::ServedRobot>();
     robot->bare = std::make_shared<const sd::Model<double>>(sd::build_model_from_urdf_string(urdf));
