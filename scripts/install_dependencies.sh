@@ -6,14 +6,15 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ccache catkin python3-catkin-pkg
-  ros-core-dev libroscpp-dev librostest-dev python3-rostest
+  ros-core-dev libroscpp-dev libroslib-dev librostest-dev python3-rostest
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libeigen3-dev libboost-dev
   googletest libgtest-dev
   liborocos-kdl-dev libkdl-parser-dev
   ros-message-generation python3-genpy
   libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev
-  python3-rospy python3-roslaunch python3-rosservice python3-rostopic
+  python3-rospy python3-roslaunch python3-rosservice python3-rostopic python3-rosnode python3-rospkg
+  rosbash rospack-tools
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-trajectory-msgs python3-std-srvs
   python3-numpy python3-setuptools python3-nose pybind11-dev python3-pybind11
 )

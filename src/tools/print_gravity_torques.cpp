@@ -1,10 +1,13 @@
-// Loads a URDF (default: the bundled Panda) and prints its gravity torques g(q) at the zero
-// configuration and at a second one (the Panda's "ready" pose, or mid-range of every joint's
-// limits for other robots).
+// Loads a URDF (default: the package's urdf/panda.urdf, found through roslib) and prints its
+// gravity torques g(q) at the zero configuration and at a second one (the Panda's "ready" pose, or
+// mid-range of every joint's limits for other robots).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
+
+#include <ros/package.h>
 
 #include "spatial_dynamics/algorithms/rnea.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
@@ -38,10 +41,28 @@ void print(const sd::Model<double>& model, sd::Data<double>& data, const char* l
   }
 }
 
+/// The bundled Panda: urdf/panda.urdf in the package's share directory (the source tree in the
+/// devel space), as ROS_PACKAGE_PATH has it; empty, after an error message, when the package is not found.
+std::string default_urdf() {
+  const std::string package = ros::package::getPath("spatial_dynamics");
+  if (package.empty()) {
+    const char* package_path = std::getenv("ROS_PACKAGE_PATH");
+    std::fprintf(stderr,
+                 "error: no URDF given, and the default, urdf/panda.urdf of the package spatial_dynamics, cannot be found:\n"
+                 "  the package spatial_dynamics is not on ROS_PACKAGE_PATH (%s).\n"
+                 "  Source the setup.bash of the workspace it is built or installed in, or give a URDF: "
+                 "print_gravity_torques URDF\n",
+                 package_path != nullptr && *package_path != '\0' ? package_path : "unset");
+    return std::string();
+  }
+  return package + "/urdf/panda.urdf";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string path = argc > 1 ? argv[1] : SPATIAL_DYNAMICS_DEFAULT_URDF;
+  const std::string path = argc > 1 ? argv[1] : default_urdf();
+  if (path.empty()) return 1;
   try {
     const sd::Model<double> model = sd::build_model_from_urdf_file(path);
     sd::Data<double> data(model);
