@@ -16,7 +16,7 @@ packages=(
   python3-rospy python3-roslaunch python3-rosservice python3-rostopic python3-rosnode python3-rospkg
   rosbash rospack-tools
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-trajectory-msgs python3-std-srvs
-  python3-numpy python3-setuptools python3-nose pybind11-dev python3-pybind11
+  python3-numpy python3-setuptools python3-nose pybind11-dev python3-pybind11 python3-matplotlib
 )
 packages+=("$@")
 

@@ -3,7 +3,8 @@
 the generated service module (spatial_dynamics.srv) and through the package's client
 (spatial_dynamics.client), checks that both give the same torques, and checks them against a second
 computation by the node: tau = M(q) qdd + ID(q, qd, 0) (~mass_matrix) and ID(FD(tau)) = tau
-(~forward_dynamics).
+(~forward_dynamics); and the library's own inverse dynamics through the bindings
+(spatial_dynamics.dynamics) against the node's.
 
     check_inverse_dynamics.py [--node /dynamics] [--prefix DIR]
 
@@ -22,6 +23,7 @@ import rospy
 
 import spatial_dynamics.client
 import spatial_dynamics.srv
+from spatial_dynamics import dynamics
 from spatial_dynamics.client import DynamicsClient
 from spatial_dynamics.srv import InverseDynamics, InverseDynamicsRequest
 
@@ -70,7 +72,7 @@ def main():
     args = parser.parse_args(rospy.myargv()[1:])
     rospy.init_node('dynamics_user_check_py', anonymous=True, disable_signals=True)
 
-    modules = [spatial_dynamics.client.__file__, spatial_dynamics.srv.__file__]
+    modules = [spatial_dynamics.client.__file__, spatial_dynamics.srv.__file__, dynamics.__file__]
     print('modules: %s' % ', '.join(modules))
     if args.prefix is not None:
         prefix = os.path.realpath(args.prefix) + os.sep
@@ -84,7 +86,8 @@ def main():
     client.wait_for_services(timeout=30.0)
     proxy = rospy.ServiceProxy(client.service_name('inverse_dynamics'), InverseDynamics)
 
-    error_same = error_split = error_round_trip = 0.0
+    model = dynamics.Model.from_urdf(urdf)
+    error_same = error_split = error_round_trip = error_bindings = 0.0
     samples = list(states(joints, 20))
     for q, qd, qdd in samples:
         names = [name for name, _, _ in joints]
@@ -107,6 +110,10 @@ def main():
         expected = m.dot(np.array([qdd[n] for n in order])) + bias
         error_split = max(error_split, float(np.max(np.abs(tau_vec - expected))) / scale)
 
+        vector = lambda values: np.array([values[n] for n in model.joint_names])  # the model's order
+        tau_bindings = dict(zip(model.joint_names, model.rnea(vector(q), vector(qd), vector(qdd))))
+        error_bindings = max(error_bindings, max(abs(tau_bindings[n] - tau[n]) for n in order) / scale)
+
         qdd_fd = client.forward_dynamics(position=q, velocity=qd, effort=dict(zip(order, tau_vec)))
         tau_back = client.inverse_dynamics(position=q, velocity=qd, acceleration=dict(qdd_fd)).as_array()
         error_round_trip = max(error_round_trip, float(np.max(np.abs(tau_back - tau_vec))) / scale)
@@ -117,6 +124,8 @@ def main():
            % len(samples), error_split)
     report(error_round_trip <= TOLERANCE, 'inverse_dynamics(forward_dynamics(tau)) = tau (%d states)' % len(samples),
            error_round_trip)
+    report(error_bindings <= TOLERANCE, 'spatial_dynamics.dynamics (the library) = the node\'s inverse_dynamics (%d states)'
+           % len(samples), error_bindings)
     return 0 if failures == 0 else 1
 
 
