@@ -60,13 +60,45 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
       add_one_dof_motion(j, qd_i, data.v[i]);                                   // v_i = X v_λ + S q̇
       data.c[i] = cross_one_dof_motion(data.v[i], j, qd_i);                     // c_i = v_i × S q̇
     } else {
-      const MotionVector<S> vJ = joint_motion(j, qd.data() + j.idx_v);
-      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;
-      data.c[i] = cross(data.v[i], vJ);
+      const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data());
+      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;             // v_i = X v_λ + S q̇
+      data.c[i] = body_joint_bias(model, data, i, qd.data()) + cross(data.v[i], vJ);  // c_i = c_J + v_i × S q̇
     }
     data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
     data.f[i] = model.inertia[i].biasForce(data.v[i]);                          // pᴬ_i = v ×* I v
     if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext
+  }
+}
+
+/// Pass 2 at a joint of n = nv > 1 coordinates (free, planar): U = Iᴬ S (6 × n), D = Sᵀ U
+/// (n × n), u = τ − Sᵀ pᴬ, and the articulated inertia and bias force passed to the parent. Out
+/// of line: it keeps the 1-DoF loop of the pass as compact as it is without it.
+template <class S>
+__attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Data<S>& data, int i,
+                                                       const ConstVectorRef<S>& tau) {
+  const Joint<S>& j = model.joints[i];
+  const int lambda = model.parent[i];
+  Matrix6<S>& IA = data.IA[i].matrix;
+  const Vector6<S> pA = data.f[i].toVector();
+  Matrix6<S>& U = data.U[i];  // columns n.. stay zero
+  Matrix6<S> D = Matrix6<S>::Identity();  // D in the top-left block: D⁻¹ there, 1 elsewhere
+  S column[6];
+  inertia_times_subspace(j, data.joint_sin[i], data.joint_cos[i], IA, U);
+  for (int k = 0; k < j.nv; ++k) {
+    body_joint_project(model, data, i, ForceVector<S>(Vector6<S>(U.col(k))), column);
+    for (int l = 0; l < j.nv; ++l) D(l, k) = column[l];
+  }
+  const Eigen::LLT<Matrix6<S>> llt(D);
+  if (llt.info() != Eigen::Success) throw_singular_joint(model, i);
+  data.D_inv[i] = llt.solve(Matrix6<S>::Identity());
+  body_joint_project(model, data, i, data.f[i], column);
+  for (int k = 0; k < j.nv; ++k) data.u[i][k] = tau[j.idx_v + k] - column[k];
+  if (lambda > 0) {
+    const Matrix6<S> UD_inv = U * data.D_inv[i];
+    IA -= UD_inv * U.transpose();                                              // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
+    const Vector6<S> pa = pA + IA * data.c[i].toVector() + UD_inv * data.u[i];  // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
+    data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);                 // Iᴬ_λ += Xᵀ Iᵃ X
+    data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));           // pᴬ_λ += Xᵀ pᵃ
   }
 }
 
@@ -88,8 +120,8 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
       // D is numerically zero when it is below the rounding noise of the block it is taken from:
       // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
       // so that the test does not depend on the units (a millimetre robot is not singular).
-      const S scale = j.type == JointType::Revolute ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
-                                                    : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
+      const S scale = one_dof_rotates(j) ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
+                                         : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
       if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
       const S u = tau[j.idx_v] - joint_project(j, pA);                           // u = τ − Sᵀ pᴬ
       data.U[i].col(0) = U;
@@ -101,12 +133,8 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
         data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);               // Iᴬ_λ += Xᵀ Iᵃ X
         data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
       }
-    } else {  // free joint (always a child of the fixed base): S = 1, U = D = Iᴬ
-      const Eigen::LLT<Matrix6<S>> llt(IA);
-      if (llt.info() != Eigen::Success) throw_singular_joint(model, i);
-      data.U[i] = IA;
-      data.D_inv[i] = llt.solve(Matrix6<S>::Identity());
-      data.u[i] = tau.template segment<6>(j.idx_v) - pA;
+    } else {
+      multi_dof_inertia_step(model, data, i, tau);
     }
   }
 }
@@ -127,9 +155,9 @@ SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data, bool 
       data.qdd[j.idx_v] = qdd;
       data.a[i] = a_prime + one_dof_motion(j, qdd);                                    // a_i = a' + S q̈
     } else {
-      const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);
-      data.qdd.template segment<6>(j.idx_v) = qdd;
-      data.a[i] = a_prime + MotionVector<S>(qdd);
+      const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);  // q̈ = D⁻¹(u − Uᵀ a'), zero past nv
+      data.qdd.segment(j.idx_v, j.nv) = qdd.head(j.nv);
+      data.a[i] = a_prime + joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd.data());  // a_i = a' + S q̈
     }
   }
 }

@@ -52,6 +52,7 @@ struct RefinementWorkspace {
   std::vector<MotionVector<W>> v_wide;
   std::vector<MotionVector<W>> a_wide;
   std::vector<ForceVector<W>> f_wide;
+  std::vector<W> sin_wide, cos_wide;  // each joint angle's sine and cosine in W (0 and 1 for other bodies)
   VectorX<W> q_wide, qd_wide;
   VectorX<W> x_wide;         // the refined accelerations x_k
   VectorX<W> residual_wide;  // r_k
@@ -72,6 +73,8 @@ struct RefinementWorkspace {
         v_wide(model.nbodies(), MotionVector<W>::Zero()),
         a_wide(model.nbodies(), MotionVector<W>::Zero()),
         f_wide(model.nbodies(), ForceVector<W>::Zero()),
+        sin_wide(model.nbodies(), W(0)),
+        cos_wide(model.nbodies(), W(1)),
         q_wide(VectorX<W>::Zero(model.nq)),
         qd_wide(VectorX<W>::Zero(model.nv)),
         x_wide(VectorX<W>::Zero(model.nv)),
@@ -232,16 +235,17 @@ F widen(const W& x) {
 }
 
 /// ^iX_λ(i) in W, as joint_up_transform computes it, with the products written out; X_tree and
-/// the axis are read from `params` (see times()).
+/// the axis are read from `params` (see times()). The joint angle's sine and cosine go to s, c.
 template <class W, class P>
-inline void wide_up_transform(const Model<W>& model, const Model<P>& params, int i, const W* q, PluckerTransform<W>& X) {
+inline void wide_up_transform(const Model<W>& model, const Model<P>& params, int i, const W* q, W& s, W& c,
+                              PluckerTransform<W>& X) {
   const Joint<W>& j = model.joints[i];
+  const int angle = angle_coordinate(j);
+  if (angle >= 0) sin_cos_wide(q[angle], s, c);
   if (j.type != JointType::Revolute) {
-    joint_up_transform(model, i, q, X);
+    joint_up_transform(model, i, q, s, c, X);
     return;
   }
-  W c, s;
-  sin_cos_wide(q[0], s, c);
   const Matrix3<P>& Et = params.X_tree[i].E;
   X.r = params.X_tree[i].r.template cast<W>();
   if (j.axis_kind != AxisKind::General) {
@@ -306,7 +310,7 @@ void wide_residual(const Model<S>& model, RefinementWorkspace<S, W>& ws, const C
     PluckerTransform<W>& X = ws.X_up_wide[i];
     MotionVector<W>& v = ws.v_wide[i];
     MotionVector<W>& a = ws.a_wide[i];
-    wide_up_transform(m, params, i, ws.q_wide.data() + j.idx_q, X);
+    wide_up_transform(m, params, i, ws.q_wide.data() + j.idx_q, ws.sin_wide[i], ws.cos_wide[i], X);
     if (lambda == 0) {  // v_0 = 0, X a_0 = (0 ; E(−a_g)): the base does not rotate
       v = MotionVector<W>::Zero();
       a.angular = Vector3<W>::Zero();
@@ -316,26 +320,29 @@ void wide_residual(const Model<S>& model, RefinementWorkspace<S, W>& ws, const C
       apply_wide_into(X, ws.v_wide[lambda], v);
       apply_wide_into(X, ws.a_wide[lambda], a);
     }
-    if (j.type != JointType::Free && j.axis_kind != AxisKind::General) {  // S = (e_k ; 0) or (0 ; e_k)
+    if (j.nv == 1 && j.axis_kind != AxisKind::General) {  // S = (e_k ; 0) or (0 ; e_k)
       const int k = static_cast<int>(j.axis_kind);
       const W& qd = ws.qd_wide[j.idx_v];
-      const bool revolute = j.type == JointType::Revolute;
+      const bool revolute = one_dof_rotates(j);
       (revolute ? v.angular : v.linear)[k] += qd;                                        // v_i = X v_λ + S q̇
       add_coordinate_axis_product(v, k, qd, revolute, a);                                // + v_i × S q̇
       (revolute ? a.angular : a.linear)[k] += ws.x_wide[j.idx_v];                        // + S x
     } else {
-      const MotionVector<W> vJ = joint_motion(j, ws.qd_wide.data() + j.idx_v);
-      v += vJ;
+      const W& s = ws.sin_wide[i];
+      const W& c = ws.cos_wide[i];
+      const MotionVector<W> vJ = joint_motion(j, s, c, ws.qd_wide.data() + j.idx_v);
+      v += vJ;                                                                           // v_i = X v_λ + S q̇
       a += MotionVector<W>(cross3(v.angular, vJ.angular),
-                           Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));
-      a += joint_motion(j, ws.x_wide.data() + j.idx_v);
+                           Vector3<W>(cross3(v.angular, vJ.linear) + cross3(v.linear, vJ.angular)));  // + v_i × S q̇
+      a += joint_motion(j, s, c, ws.x_wide.data() + j.idx_v);                            // + S x
+      a += joint_bias(j, s, c, ws.qd_wide.data() + j.idx_v);                             // + c_J
     }
     bias_force_wide(params.inertia[i], v, ws.f_wide[i]);                                 // v ×* I v
     add_inertia_times_wide(params.inertia[i], a, ws.f_wide[i]);                          // + I a
   }
   for (int i = m.nbodies() - 1; i >= 1; --i) {
     const Joint<W>& j = m.joints[i];
-    joint_project(j, ws.f_wide[i], ws.residual_wide.data() + j.idx_v);              // Sᵀ f_i
+    joint_project(j, ws.sin_wide[i], ws.cos_wide[i], ws.f_wide[i], ws.residual_wide.data() + j.idx_v);  // Sᵀ f_i
     if (m.parent[i] > 0) add_apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i], ws.f_wide[m.parent[i]]);  // f_λ += Xᵀ f
   }
   for (int k = 0; k < m.nv; ++k) ws.residual_wide[k] = W(tau[k]) - ws.residual_wide[k];
@@ -350,14 +357,14 @@ void subtract_mass_matrix_product(const Model<S>& model, RefinementWorkspace<S, 
   for (int i = 1; i < m.nbodies(); ++i) {
     const Joint<W>& j = m.joints[i];
     apply_wide_into(ws.X_up_wide[i], ws.a_wide[m.parent[i]], ws.a_wide[i]);
-    ws.a_wide[i] += joint_motion(j, ws.delta_wide.data() + j.idx_v);          // a_i = X a_λ + S δ
+    ws.a_wide[i] += joint_motion(j, ws.sin_wide[i], ws.cos_wide[i], ws.delta_wide.data() + j.idx_v);  // a_i = X a_λ + S δ
     ws.f_wide[i] = ForceVector<W>::Zero();
     add_inertia_times_wide(params.inertia[i], ws.a_wide[i], ws.f_wide[i]);     // f_i = I a_i
   }
   W column[6];
   for (int i = m.nbodies() - 1; i >= 1; --i) {
     const Joint<W>& j = m.joints[i];
-    joint_project(j, ws.f_wide[i], column);
+    joint_project(j, ws.sin_wide[i], ws.cos_wide[i], ws.f_wide[i], column);
     for (int k = 0; k < j.nv; ++k) ws.residual_wide[j.idx_v + k] -= column[k];
     if (m.parent[i] > 0) add_apply_transpose_wide(ws.X_up_wide[i], ws.f_wide[i], ws.f_wide[m.parent[i]]);
   }
@@ -370,14 +377,13 @@ void subtract_mass_matrix_product_narrow(const Model<S>& model, const Data<S>& d
   const int n = model.nbodies();
   ws.a[0] = MotionVector<S>::Zero();
   for (int i = 1; i < n; ++i) {
-    const Joint<S>& j = model.joints[i];
-    ws.a[i] = data.X_up[i].apply(ws.a[model.parent[i]]) + joint_motion(j, ws.delta.data() + j.idx_v);  // a = X a_λ + S δ
+    ws.a[i] = data.X_up[i].apply(ws.a[model.parent[i]]) + body_joint_motion(model, data, i, ws.delta.data());  // a = X a_λ + S δ
     ws.p[i] = model.inertia[i] * ws.a[i];                                                            // f = I a
   }
   S column[6];
   for (int i = n - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
-    joint_project(j, ws.p[i], column);
+    body_joint_project(model, data, i, ws.p[i], column);
     for (int k = 0; k < j.nv; ++k) ws.residual_wide[j.idx_v + k] -= W(column[k]);
     if (model.parent[i] > 0) ws.p[model.parent[i]] += data.X_up[i].applyInverse(ws.p[i]);         // f_λ += Xᵀ f
   }
@@ -395,7 +401,7 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
     const int lambda = model.parent[i];
     ForceVector<S>& p = ws.p[i];  // pᴬ, turned into pᵃ in place
     if (j.nv == 1) {
-      const S u = ws.residual[j.idx_v] - detail::along_axis(j, j.type == JointType::Revolute ? p.angular : p.linear);  // u = r − Sᵀ pᴬ
+      const S u = ws.residual[j.idx_v] - detail::along_axis(j, one_dof_rotates(j) ? p.angular : p.linear);  // u = r − Sᵀ pᴬ
       ws.u[i][0] = u;
       if (lambda > 0) {
         const S scaled = u * data.D_inv[i](0, 0);
@@ -404,7 +410,13 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
         ws.p[lambda] += data.X_up[i].applyInverse(p);                                 // pᴬ_λ += Xᵀ pᵃ
       }
     } else {
-      ws.u[i] = ws.residual.template segment<6>(j.idx_v) - p.toVector();
+      S column[6];
+      body_joint_project(model, data, i, p, column);
+      for (int k = 0; k < j.nv; ++k) ws.u[i][k] = ws.residual[j.idx_v + k] - column[k];  // u = r − Sᵀ pᴬ
+      if (lambda > 0) {
+        p = ForceVector<S>(Vector6<S>(p.toVector() + data.U[i] * (data.D_inv[i] * ws.u[i])));  // pᵃ = pᴬ + U D⁻¹ u
+        ws.p[lambda] += data.X_up[i].applyInverse(p);                                 // pᴬ_λ += Xᵀ pᵃ
+      }
     }
   }
   ws.a[0] = MotionVector<S>::Zero();
@@ -419,9 +431,9 @@ void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, Re
       ws.delta[j.idx_v] = d;
       add_one_dof_motion(j, d, a);                                                     // a = a' + S δ
     } else {
-      const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * a.toVector());
-      ws.delta.template segment<6>(j.idx_v) = d;
-      a = a + MotionVector<S>(d);
+      const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * a.toVector());  // zero past nv
+      ws.delta.segment(j.idx_v, j.nv) = d.head(j.nv);
+      a = a + joint_motion(j, data.joint_sin[i], data.joint_cos[i], d.data());          // a = a' + S δ
     }
   }
 }

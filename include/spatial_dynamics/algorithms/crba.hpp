@@ -40,7 +40,7 @@ void base_poses_and_axes(const Model<S>& model, Data<S>& data) {
       case AxisKind::X: data.axis_base[i] = data.X_base[i].E.row(0).transpose(); break;
       case AxisKind::Y: data.axis_base[i] = data.X_base[i].E.row(1).transpose(); break;
       case AxisKind::Z: data.axis_base[i] = data.X_base[i].E.row(2).transpose(); break;
-      default: data.axis_base[i] = data.X_base[i].E.transpose() * j.axis; break;
+      case AxisKind::General: data.axis_base[i] = data.X_base[i].E.transpose() * j.axis; break;
     }
   }
   // The same origins and axes as six arrays, for carry_over_revolute_run.
@@ -85,7 +85,7 @@ SD_INLINE void carry_column_per_ancestor(const Model<S>& model, Data<S>& data, i
     F = data.X_up[j].applyInverse(F);                                           // F = ^jX_λᵀ F
     j = model.parent[j];
     const Joint<S>& jj = model.joints[j];
-    joint_project(jj, F, column);                                               // M_ji = S_jᵀ F
+    body_joint_project(model, data, j, F, column);                              // M_ji = S_jᵀ F
     const S kk = ki * coupling_multiplier(jj);
     for (int l = 0; l < jj.nv; ++l) write_mass_pair(model, data, jj.idx_v + l, col, kk * column[l]);
   }
@@ -115,16 +115,16 @@ SD_INLINE void carry_column_in_base(const Model<S>& model, Data<S>& data, int i,
   for (; j > 0; j = model.parent[j]) {
     const Joint<S>& jj = model.joints[j];
     const S kk = ki * coupling_multiplier(jj);
-    if (jj.type == JointType::Prismatic) {
+    if (jj.nv == 1 && !one_dof_rotates(jj)) {
       write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(f_base));
       continue;
     }
     const Vector3<S> n_j = moment_about(j);
-    if (jj.type == JointType::Revolute) {
+    if (jj.nv == 1) {
       write_mass_pair(model, data, jj.idx_v, col, kk * data.axis_base[j].dot(n_j));
-    } else {  // free joint: S = 1 in body j coordinates
+    } else {  // several coordinates: Sᵀ F in body j coordinates
       const Matrix3<S>& E_j = data.X_base[j].E;
-      joint_project(jj, ForceVector<S>(Vector3<S>(E_j * n_j), Vector3<S>(E_j * f_base)), column);
+      body_joint_project(model, data, j, ForceVector<S>(Vector3<S>(E_j * n_j), Vector3<S>(E_j * f_base)), column);
       for (int l = 0; l < jj.nv; ++l) write_mass_pair(model, data, jj.idx_v + l, col, kk * column[l]);
     }
   }
@@ -169,8 +169,8 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
     for (int k = 0; k < ji.nv; ++k) {
       const int col = ji.idx_v + k;
       const ForceVector<S> F = ji.nv == 1 ? inertia_times_one_dof_subspace(ji, data.Ic[i])
-                                          : data.Ic[i] * joint_subspace_column(ji, k);  // F = Iᶜ_i S_i
-      joint_project(ji, F, column);                                             // M_ii = Sᵢᵀ F
+                                          : data.Ic[i] * body_subspace_column(model, data, i, k);  // F = Iᶜ_i S_i
+      body_joint_project(model, data, i, F, column);                            // M_ii = Sᵢᵀ F
       if (model.has_coupled_joints) data.M(col, col) += ki * ki * column[k];
       else data.M(col, col) = column[k];
       for (int l = k + 1; l < ji.nv; ++l) detail::write_mass_pair(model, data, ji.idx_v + l, col, column[l]);  // exactly symmetric

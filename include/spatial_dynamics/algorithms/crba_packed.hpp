@@ -29,7 +29,7 @@ SD_INLINE void packed_composite_force(const Joint<double>& j, const Data<double>
                                       packed3::Packed3& n, packed3::Packed3& f) {
   using namespace packed3;
   const Packed3 axis = make(j.axis.x(), j.axis.y(), j.axis.z());
-  if (j.type == JointType::Revolute) {
+  if (one_dof_rotates(j)) {
     n = mat_vec(load(b.I0), load(b.I1), load(b.I2), axis);
     f = cross(axis, load(b.h));
   } else {
@@ -81,7 +81,7 @@ inline void crba_packed_columns_in_base(const Model<double>& model, Data<double>
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);
     const Eigen::Index col = ji.idx_v;
-    M[col + col * stride] = packed_along_axis(ji, ji.type == JointType::Revolute ? n : f);  // M_ii = Sᵢᵀ F
+    M[col + col * stride] = packed_along_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
     const Packed3 base_t0 = load(b.base_t0), base_t1 = load(b.base_t1), base_t2 = load(b.base_t2);
     const Packed3 n_base = mat_vec(base_t0, base_t1, base_t2, n), f_base = mat_vec(base_t0, base_t1, base_t2, f);
     const Vector3<double> n3(n_base[0], n_base[1], n_base[2]), f3(f_base[0], f_base[1], f_base[2]);
@@ -164,14 +164,14 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);  // F = Iᶜ_i S_i
     const Eigen::Index col = ji.idx_v;
-    M[col + col * stride] = packed_along_axis(ji, ji.type == JointType::Revolute ? n : f);  // M_ii = Sᵢᵀ F
+    M[col + col * stride] = packed_along_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
     for (int j = i, lambda = parent[i]; lambda > 0; j = lambda, lambda = parent[j]) {
       const Data<double>::PackedCrbaBody& x = body[j];  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
       const Packed3 t0 = load(x.t0), t1 = load(x.t1), t2 = load(x.t2);
       f = mat_vec(t0, t1, t2, f);
       n = mat_vec(t0, t1, t2, n) + cross(load(x.r), f);
       const Joint<double>& jl = joints[lambda];
-      const double m = packed_along_axis(jl, jl.type == JointType::Revolute ? n : f);  // M_λi = S_λᵀ F
+      const double m = packed_along_axis(jl, one_dof_rotates(jl) ? n : f);  // M_λi = S_λᵀ F
       const Eigen::Index row = jl.idx_v;
       M[row + col * stride] = m;
       M[col + row * stride] = m;

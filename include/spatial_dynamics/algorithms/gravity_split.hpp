@@ -72,22 +72,9 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   const W* f = b.force;
   const int v = j.idx_v;
   S* out = data.tau_less_gravity.data();
-  const W* along = j.type == JointType::Revolute ? n : f;
-  if (j.type != JointType::Free) {
-    W projected;
-    switch (j.axis_kind) {
-      case AxisKind::X: projected = along[0]; break;
-      case AxisKind::Y: projected = along[1]; break;
-      case AxisKind::Z: projected = along[2]; break;
-      default: projected = j.axis[0] * along[0] + j.axis[1] * along[1] + j.axis[2] * along[2];
-    }
-    out[v] = S(W(tau[v]) - projected);
-  } else {  // S = 1
-    for (int k = 0; k < 3; ++k) {
-      out[v + k] = S(W(tau[v + k]) - n[k]);
-      out[v + 3 + k] = S(W(tau[v + 3 + k]) - f[k]);
-    }
-  }
+  W projected[6];
+  joint_project(j, data.joint_sin[i], data.joint_cos[i], n, f, projected);  // Sᵀ f, in W
+  for (int k = 0; k < j.nv; ++k) out[v + k] = S(W(tau[v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
   const Matrix3<S>& E = data.X_up[i].E;

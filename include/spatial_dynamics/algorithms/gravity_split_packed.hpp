@@ -47,25 +47,21 @@ SD_INLINE void gravity_split_inward_packed(const Model<double>& model, Data<doub
   const auto& body = data.packed_gravity_split[i];
   const PackedDoubleDouble n{load(body.moment_hi), load(body.moment_lo)};
   const PackedDoubleDouble f{load(body.force_hi), load(body.force_lo)};
-  const auto lane = [](const PackedDoubleDouble& x, int k) { return DoubleDouble(x.hi[k], x.lo[k]); };
   double* out = data.tau_less_gravity.data();
   const int v = j.idx_v;
-  if (j.type != JointType::Free) {
-    const PackedDoubleDouble& along = j.type == JointType::Revolute ? n : f;
-    DoubleDouble projected;
-    switch (j.axis_kind) {
-      case AxisKind::X: projected = lane(along, 0); break;
-      case AxisKind::Y: projected = lane(along, 1); break;
-      case AxisKind::Z: projected = lane(along, 2); break;
-      default:
-        projected = j.axis[0] * lane(along, 0) + j.axis[1] * lane(along, 1) + j.axis[2] * lane(along, 2);
-    }
-    out[v] = double(DoubleDouble(tau[v]) - projected);
-  } else {  // S = 1
+  if (j.nv == 1) {  // one lane of n or f, or the axis' dot product: no copy of the other lanes
+    const PackedDoubleDouble& along = one_dof_rotates(j) ? n : f;
+    DoubleDouble lanes[3];
+    for (int k = 0; k < 3; ++k) lanes[k] = DoubleDouble(along.hi[k], along.lo[k]);
+    out[v] = double(DoubleDouble(tau[v]) - detail::dot_axis(j, lanes));
+  } else {
+    DoubleDouble n_wide[3], f_wide[3], projected[6];
     for (int k = 0; k < 3; ++k) {
-      out[v + k] = double(DoubleDouble(tau[v + k]) - lane(n, k));
-      out[v + 3 + k] = double(DoubleDouble(tau[v + 3 + k]) - lane(f, k));
+      n_wide[k] = DoubleDouble(body.moment_hi.lane[k], body.moment_lo.lane[k]);
+      f_wide[k] = DoubleDouble(body.force_hi.lane[k], body.force_lo.lane[k]);
     }
+    joint_project(j, data.joint_sin[i], data.joint_cos[i], n_wide, f_wide, projected);  // Sᵀ f, in double-double
+    for (int k = 0; k < j.nv; ++k) out[v + k] = double(DoubleDouble(tau[v + k]) - projected[k]);
   }
   const int lambda = model.parent[i];
   if (lambda == 0) return;

@@ -30,7 +30,7 @@ const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const Co
     const Joint<S>& joint = model.joints[j];
     const S scale = coupling_multiplier(joint);  // a coupled joint moves with its master's coordinate
     for (int k = 0; k < joint.nv; ++k)
-      data.J.col(joint.idx_v + k) += scale * X_Fj.apply(joint_subspace_column(joint, k)).toVector();
+      data.J.col(joint.idx_v + k) += scale * X_Fj.apply(body_subspace_column(model, data, j, k)).toVector();
   }
   detail::check_finite_result(model, "frame Jacobian: the column", data.J);
   return data.J;

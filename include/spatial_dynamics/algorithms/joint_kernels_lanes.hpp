@@ -135,6 +135,7 @@ SD_LANE_INLINE void joint_up_transform_lanes(const Model<S>& model, int i, const
       X.r = LaneVector3<S, L>::Constant(Xt.r) + LaneMatrix3<S, L>::Constant(Xt.E).transposeTimes(p);
       return;
     }
+    case JointType::Planar: return;  // rnea_batch leaves planar joints to the one-state RNEA
   }
 }
 
@@ -150,6 +151,7 @@ SD_LANE_INLINE void add_joint_motion(const Joint<S>& j, const Lanes<S, L>* qd, L
         m.linear[k] += qd[k + 3];
       }
       return;
+    case JointType::Planar: return;  // rnea_batch leaves planar joints to the one-state RNEA
   }
 }
 
@@ -162,11 +164,13 @@ SD_LANE_INLINE LaneMotion<S, L> joint_motion_cross(const Joint<S>& j, const Lane
       return {detail::cross_with_axis(j, v.angular, qd[0]), detail::cross_with_axis(j, v.linear, qd[0])};
     case JointType::Prismatic:  // S q̇ = (0; a q̇): (0 ; ω × a q̇)
       return {LaneVector3<S, L>::Zero(), detail::cross_with_axis(j, v.angular, qd[0])};
-    default: {
+    case JointType::Free: {
       const LaneMotion<S, L> vJ{{qd[0], qd[1], qd[2]}, {qd[3], qd[4], qd[5]}};
       return cross(v, vJ);
     }
+    case JointType::Planar: break;  // rnea_batch leaves planar joints to the one-state RNEA
   }
+  return LaneMotion<S, L>::Zero();
 }
 
 /// τ = Sᵀ f written to tau[0 .. nv) (lanes of the joint's velocity coordinates).
@@ -181,6 +185,7 @@ SD_LANE_INLINE void joint_project_lanes(const Joint<S>& j, const LaneForce<S, L>
         tau[k + 3] = f.linear[k];
       }
       return;
+    case JointType::Planar: return;  // rnea_batch leaves planar joints to the one-state RNEA
   }
 }
 

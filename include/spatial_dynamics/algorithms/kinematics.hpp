@@ -47,7 +47,7 @@ void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorR
   forward_kinematics<S>(model, data, q);
   data.v[0] = MotionVector<S>::Zero();
   for (int i = 1; i < model.nbodies(); ++i) {
-    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model.joints[i], qd.data());
+    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model, data, i, qd.data());
     if (!data.v[i].angular.allFinite() || !data.v[i].linear.allFinite())
       throw std::domain_error("forward kinematics: the velocity of body '" + model.body_names[i] + "'" +
                               detail::non_finite_reason());

@@ -22,7 +22,7 @@ SD_INLINE void rnea_backward_pass(const Model<S>& model, Data<S>& data) {
   const bool accumulate = model.has_coupled_joints;
   if (accumulate) data.tau.setZero();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    store_joint_force(model.joints[i], data.f[i], data.tau.data(), accumulate);    // τ_i = Sᵢᵀ f_i
+    store_joint_force(model, data, i, data.f[i], data.tau.data(), accumulate);     // τ_i = Sᵢᵀ f_i
     const int lambda = model.parent[i];
     if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
   }
@@ -63,10 +63,10 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
       a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i);   // a_i = X a_λ + v_i × S q̇
       add_one_dof_motion(j, qdd_i, a);                                             //       + S q̈
     } else {
-      const MotionVector<S> vJ = body_joint_motion(j, qd.data());                  // S q̇
+      const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data());     // S q̇
       data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                         // v_i = X v_λ + S q̇
-      data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(j, qdd.data()) +
-                  cross(data.v[i], vJ);                                            // a_i = X a_λ + S q̈ + v_i × S q̇
+      data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(model, data, i, qdd.data()) +
+                  body_joint_bias(model, data, i, qd.data()) + cross(data.v[i], vJ);  // a_i = X a_λ + S q̈ + c_J + v_i × S q̇
     }
     const ForceVector<S> Iv = model.inertia[i] * data.v[i];
     data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)

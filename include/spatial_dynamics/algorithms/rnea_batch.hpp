@@ -144,9 +144,10 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
   if (static_cast<int>(data.X_up.size()) != model.nbodies() || static_cast<int>(data.q.size()) != model.nq)
     throw std::invalid_argument("the batch workspace was made for another model");
 
-  if (model.has_coupled_joints) {
+  if (model.has_coupled_joints || model.has_multi_dof_tree_joints) {
     // A coupled mimic joint reads and accumulates its master's coordinate (joint_kernels.hpp,
-    // body_up_transform … store_joint_force); such models take the one-state RNEA per state.
+    // body_up_transform … store_joint_force), and the lane kernels are written for 1-DoF joints
+    // and a free root: such models take the one-state RNEA per state.
     for (Eigen::Index c = 0; c < n; ++c) {
       try {
         tau.col(c) = rnea<S>(model, data.single, q.col(c), qd.col(c), qdd.col(c));

@@ -18,7 +18,8 @@ namespace detail {
 template <class S>
 bool rnea_takes_packed_path(const Model<S>& model) {
 #ifdef SD_PACKED3
-  return std::is_same<S, double>::value && !model.floating_base && !model.has_coupled_joints;
+  return std::is_same<S, double>::value && !model.floating_base && !model.has_coupled_joints &&
+         !model.has_multi_dof_tree_joints;  // written for 1-DoF trees
 #else
   (void)model;
   return false;
@@ -79,13 +80,13 @@ SD_INLINE void packed_up_transform(const Model<double>& model, const Data<double
   const PluckerTransform<double>& Xt = model.X_tree[i];
   load_columns(Xt.E, c0, c1, c2);
   r = load_after(Xt.E.data() + 8);
-  if (j.type == JointType::Revolute) {
+  if (one_dof_rotates(j)) {
     packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
   } else {
     axis = make(j.axis.x(), j.axis.y(), j.axis.z());
   }
   transpose(c0, c1, c2, t0, t1, t2);
-  if (j.type == JointType::Prismatic) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);  // r = r_tree + E_treeᵀ (q a)
+  if (!one_dof_rotates(j)) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);  // r = r_tree + E_treeᵀ (q a)
 }
 
 /// I x for a rigid inertia (eq. 25): (Ī ω + h × v ; m v − h × ω).
@@ -140,7 +141,7 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
     Packed3 v = mat_vec(c0, c1, c2, load(p.v) - cross(r, pw));
     Packed3 aw = mat_vec(c0, c1, c2, paw);
     Packed3 al = mat_vec(c0, c1, c2, load(p.al) - cross(r, paw));
-    if (j.type == JointType::Revolute) {
+    if (one_dof_rotates(j)) {
       w += s_qd;
       aw += cross(w, s_qd);
       aw += s_qdd;
@@ -178,7 +179,7 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
     const Joint<double>& j = model.joints[i];
     const Data<double>::PackedRneaBody& b = body[i];
     const Packed3 n = load(b.n), f = load(b.f);
-    tau[j.idx_v] = packed_along_axis(j, j.type == JointType::Revolute ? n : f);
+    tau[j.idx_v] = packed_along_axis(j, one_dof_rotates(j) ? n : f);
     const int lambda = model.parent[i];
     if (lambda > 0) {
       const Packed3 t0 = load(b.t0), t1 = load(b.t1), t2 = load(b.t2);

@@ -25,7 +25,7 @@ struct BatchData {
   // The block's inputs and result, per coordinate.
   std::vector<Lanes<S, L>> q, qd, qdd, tau;
 
-  Data<S> single;  // one state at a time (models with coupled mimic joints)
+  Data<S> single;  // one state at a time (models with coupled mimic joints, planar or floating joints in the tree)
 
   explicit BatchData(const Model<S>& model)
       : X_up(model.nbodies()),

@@ -29,9 +29,9 @@ struct Data {
                                             // without gravity where the ABA splits it off)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations v_i × S_i q̇_i (ABA)
   std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
-  // Revolute joints: the bodies they move, and sin and cos of each one's angle (entries of other
-  // bodies unused), all computed together before the passes (joint_kernels.hpp).
-  std::vector<int> revolute_bodies;
+  // Joints with an angle (revolute, planar): the bodies they move, and sin and cos of each
+  // angle (0 and 1 for other bodies), all computed together before the passes (joint_kernels.hpp).
+  std::vector<int> angle_bodies;
   std::vector<S> joint_sin, joint_cos;
   // The packed RNEA's per-body state (algorithms/rnea_packed.hpp; double only, empty otherwise):
   // velocity, acceleration, force, the rows of ^iX_λ's rotation and its translation.
@@ -124,7 +124,7 @@ struct Data {
         zero_v(VectorX<S>::Zero(model.nv)),
         llt(model.nv) {
     for (int i = 1; i < model.nbodies(); ++i)
-      if (model.joints[i].type == JointType::Revolute) revolute_bodies.push_back(i);
+      if (angle_coordinate(model.joints[i]) >= 0) angle_bodies.push_back(i);
     for (int i = 1; i < model.nbodies(); ++i) {
       const Joint<S>& j = model.joints[i];
       const bool revolute = j.type == JointType::Revolute && !j.coupled;

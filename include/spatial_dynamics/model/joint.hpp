@@ -12,8 +12,10 @@ namespace spatial_dynamics {
 enum class JointType {
   Revolute,   // 1 DoF, rotation about `axis` (URDF revolute and continuous)
   Prismatic,  // 1 DoF, translation along `axis`
-  Free,       // 6 DoF, the floating root: q = (x y z qx qy qz qw), q̇ = (ω; v) in the body frame
+  Free,       // 6 DoF: the floating root or a URDF floating joint, q = (x y z qx qy qz qw), q̇ = (ω; v) in the body frame
+  Planar,     // 3 DoF, q = (x, y, yaw): translation along plane_x and plane_y, rotation about `axis` (the normal)
 };
+// Each type's arithmetic is its own file, model/joints/<type>.hpp, reached through visit_joint.
 
 /// Axis-aligned joints take cheaper code paths than a general unit axis.
 enum class AxisKind { X, Y, Z, General };
@@ -51,6 +53,9 @@ struct Joint {
   JointType type = JointType::Revolute;
   AxisKind axis_kind = AxisKind::Z;
   Vector3<S> axis = Vector3<S>::UnitZ();  // unit axis in the joint (= child body) frame
+  // A planar joint's in-plane axes e₁ and e₂ = axis × e₁ (joint frame); zero for other types.
+  Vector3<S> plane_x = Vector3<S>::Zero();
+  Vector3<S> plane_y = Vector3<S>::Zero();
   int idx_q = 0;                          // first coordinate in q
   int idx_v = 0;                          // first coordinate in q̇, q̈, τ
   int nq = 1;
@@ -67,6 +72,8 @@ struct Joint {
     j.type = type;
     j.axis_kind = axis_kind;
     j.axis = axis.template cast<T>();
+    j.plane_x = plane_x.template cast<T>();
+    j.plane_y = plane_y.template cast<T>();
     j.idx_q = idx_q;
     j.idx_v = idx_v;
     j.nq = nq;

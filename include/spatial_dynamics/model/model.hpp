@@ -11,6 +11,7 @@
 
 #include "spatial_dynamics/model/frame.hpp"
 #include "spatial_dynamics/model/joint.hpp"
+#include "spatial_dynamics/model/joints/joint_dispatch.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
@@ -23,6 +24,10 @@ struct Model {
   int nv = 0;  // velocity size = number of degrees of freedom (a free root adds 6)
   bool floating_base = false;
   bool has_coupled_joints = false;  // some joints follow a master's coordinate (couple_mimic_joints)
+  // Some joint other than a free root has several coordinates (planar, or floating inside the
+  // tree): the packed and batched paths, written for 1-DoF trees, leave such models to the
+  // generic passes. Set by finalize().
+  bool has_multi_dof_tree_joints = false;
 
   // Per body, index 0 = fixed base. Entries 0 of joints/X_tree/joint_names are unused.
   std::vector<int> parent;
@@ -54,26 +59,40 @@ struct Model {
   }
   bool hasJoint(const std::string& name) const { return joint_index_.count(name) != 0; }
 
-  /// Names of the velocity coordinates, in order (a free root contributes six).
+  /// Names of the velocity coordinates, in order: a 1-DoF joint's name, `<joint>/wx` … `/vz` for a
+  /// free joint, `<joint>/x`, `/y`, `/yaw` for a planar one (model/joints/<type>.hpp).
   std::vector<std::string> velocityNames() const {
     std::vector<std::string> names;
     for (int i = 1; i < nbodies(); ++i) {
       if (joints[i].coupled) continue;  // no coordinate of its own
-      if (joints[i].type == JointType::Free) {
-        for (const char* c : {"wx", "wy", "wz", "vx", "vy", "vz"}) names.push_back(joint_names[i] + "/" + c);
-      } else {
-        names.push_back(joint_names[i]);
-      }
+      for (std::string& name : visit_joint(joints[i], [&](auto joint) { return joint.velocity_names(joint_names[i]); }))
+        names.push_back(std::move(name));
     }
     return names;
   }
 
-  /// Rebuilds the name lookups; the model builder calls it once, after filling the vectors.
+  /// Names of the configuration coordinates, in order: as velocityNames, except a free joint's
+  /// seven, `<joint>/x`, `/y`, `/z`, `/qx`, `/qy`, `/qz`, `/qw`.
+  std::vector<std::string> positionNames() const {
+    std::vector<std::string> names;
+    for (int i = 1; i < nbodies(); ++i) {
+      if (joints[i].coupled) continue;
+      for (std::string& name : visit_joint(joints[i], [&](auto joint) { return joint.position_names(joint_names[i]); }))
+        names.push_back(std::move(name));
+    }
+    return names;
+  }
+
+  /// Rebuilds the name lookups and the derived flags; the model builder calls it once, after
+  /// filling the vectors.
   void finalize() {
     frame_index_.clear();
     joint_index_.clear();
     for (int f = 0; f < static_cast<int>(frames.size()); ++f) frame_index_[frames[f].name] = f;
     for (int i = 1; i < nbodies(); ++i) joint_index_[joint_names[i]] = i;
+    has_multi_dof_tree_joints = false;
+    for (int i = 1; i < nbodies(); ++i)
+      if (joints[i].nv > 1 && !(floating_base && i == 1)) has_multi_dof_tree_joints = true;
   }
 
   /// The same model in another scalar type (e.g. a high-precision reference).

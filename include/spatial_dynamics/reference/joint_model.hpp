@@ -39,13 +39,15 @@ Mat3<S> quaternion_rotation(const S& w, const S& x, const S& y, const S& z) {
 /// X_J(q) of one joint, q its own coordinates (RBDA Table 4.1):
 ///   revolute   X_J = rot(E(a, q)),
 ///   prismatic  X_J = xlt(q a),
-///   free       X_J = rot(E) xlt(p), q = (p; quaternion x y z w), E = Rᵀ of the quaternion.
+///   free       X_J = rot(E) xlt(p), q = (p; quaternion x y z w), E = Rᵀ of the quaternion,
+///   planar     X_J = rot(E(n, ψ)) xlt(x e₁ + y e₂), q = (x, y, ψ).
 template <class S>
 Mat6<S> joint_transform(const Joint<S>& j, const VectorArg<S>& q) {
   switch (j.type) {
     case JointType::Revolute: return rot(axis_rotation<S>(j.axis, q[0]));
     case JointType::Prismatic: return xlt<S>(q[0] * j.axis);
     case JointType::Free: return plucker(quaternion_rotation(q[6], q[3], q[4], q[5]), Vec3<S>(q[0], q[1], q[2]));
+    case JointType::Planar: return plucker(axis_rotation<S>(j.axis, q[2]), Vec3<S>(q[0] * j.plane_x + q[1] * j.plane_y));
   }
   throw std::invalid_argument("reference: unknown joint type");
 }
@@ -58,6 +60,8 @@ Mat6X<S> motion_subspace(const Joint<S>& j) {
     case JointType::Revolute: return (Mat6X<S>(6, 1) << j.axis, Vec3<S>::Zero()).finished();
     case JointType::Prismatic: return (Mat6X<S>(6, 1) << Vec3<S>::Zero(), j.axis).finished();
     case JointType::Free: return Mat6X<S>(Mat6<S>::Identity());
+    case JointType::Planar:  // S varies with q: the reference checks it as its elementary joints
+      throw std::invalid_argument("reference: a planar joint is checked as two prismatic joints and a revolute one");
   }
   throw std::invalid_argument("reference: unknown joint type");
 }

@@ -7,10 +7,14 @@
 // The small spatial operations below are called once or twice per body on the algorithms' hot
 // paths; GCC's inlining budget runs out inside the large algorithm bodies, and an out-of-line
 // call passes each 6-vector through memory. SD_INLINE forces them inline.
+// SD_INLINE_LAMBDA does the same for a lambda (after its parameter list), e.g. the visitors of
+// visit_joint (model/joints/joint_dispatch.hpp).
 #if defined(__GNUC__)
 #define SD_INLINE inline __attribute__((always_inline))
+#define SD_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define SD_INLINE inline
+#define SD_INLINE_LAMBDA
 #endif
 
 namespace spatial_dynamics {

@@ -1,0 +1,123 @@
+// Products with a joint's unit axis a that read one component, or two, when a is a coordinate
+// axis (AxisKind X, Y, Z), and the coordinate rotations about it: the shortcuts every joint
+// model shares.
+#pragma once
+
+#include "spatial_dynamics/model/joint.hpp"
+#include "spatial_dynamics/spatial/cross.hpp"
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/lane_trigonometry.hpp"
+
+namespace spatial_dynamics {
+namespace detail {
+
+/// a · x, reading one component for an axis-aligned joint; x is a 3-array of any scalar.
+template <class S, class T>
+SD_INLINE T dot_axis(const Joint<S>& j, const T* x) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return x[0];
+    case AxisKind::Y: return x[1];
+    case AxisKind::Z: return x[2];
+    case AxisKind::General: break;
+  }
+  return j.axis[0] * x[0] + j.axis[1] * x[1] + j.axis[2] * x[2];
+}
+
+/// a · x.
+template <class S>
+SD_INLINE S along_axis(const Joint<S>& j, const Vector3<S>& x) {
+  return dot_axis(j, x.data());
+}
+
+/// k · a.
+template <class S>
+SD_INLINE Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return Vector3<S>(k, S(0), S(0));
+    case AxisKind::Y: return Vector3<S>(S(0), k, S(0));
+    case AxisKind::Z: return Vector3<S>(S(0), S(0), k);
+    case AxisKind::General: break;
+  }
+  return Vector3<S>(j.axis.x() * k, j.axis.y() * k, j.axis.z() * k);
+}
+
+/// x × (k a): two products for a coordinate axis (x × e_x = (0, x_z, −x_y), cyclic).
+template <class S>
+SD_INLINE Vector3<S> cross_axis(const Joint<S>& j, const Vector3<S>& x, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return Vector3<S>(S(0), x.z() * k, -(x.y() * k));
+    case AxisKind::Y: return Vector3<S>(-(x.z() * k), S(0), x.x() * k);
+    case AxisKind::Z: return Vector3<S>(x.y() * k, -(x.x() * k), S(0));
+    case AxisKind::General: break;
+  }
+  return cross_3d(x, Vector3<S>(j.axis.x() * k, j.axis.y() * k, j.axis.z() * k));
+}
+
+/// x += k a.
+template <class S>
+SD_INLINE void add_along_axis(const Joint<S>& j, Vector3<S>& x, const S& k) {
+  switch (j.axis_kind) {
+    case AxisKind::X: x.x() += k; return;
+    case AxisKind::Y: x.y() += k; return;
+    case AxisKind::Z: x.z() += k; return;
+    case AxisKind::General: x += j.axis * k; return;
+  }
+}
+
+/// Σ_k a_k I.col(offset + k): I (0 ; a) (offset 3) or I (a ; 0) (offset 0) of a 6 × 6 matrix, one
+/// column of I for a coordinate axis.
+template <class S>
+SD_INLINE Vector6<S> combine_columns_along_axis(const Joint<S>& j, const Matrix6<S>& I, int offset) {
+  switch (j.axis_kind) {
+    case AxisKind::X: return I.col(offset);
+    case AxisKind::Y: return I.col(offset + 1);
+    case AxisKind::Z: return I.col(offset + 2);
+    case AxisKind::General: break;
+  }
+  return I.template middleCols<3>(offset) * j.axis;
+}
+
+/// sin θ and cos θ of one angle: the batched routine on one lane (lane_trigonometry.hpp, within
+/// 1 ulp for double and |θ| ≤ 1e5); other scalars and larger angles take std::sin and std::cos.
+template <class S>
+SD_INLINE void joint_sin_cos(const S& angle, S& s, S& c) {
+  Lanes<S, 1> sine, cosine;
+  sincos_lanes(Lanes<S, 1>::Constant(angle), sine, cosine);
+  s = sine[0];
+  c = cosine[0];
+}
+
+/// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
+/// for a coordinate rotation about the remaining axis.
+template <class S>
+SD_INLINE void rotate_rows(Matrix3<S>& E, int m, int n, const S& c, const S& s) {
+  for (int k = 0; k < 3; ++k) {
+    const S em = E(m, k), en = E(n, k);
+    E(m, k) = c * em + s * en;
+    E(n, k) = c * en - s * em;
+  }
+}
+
+/// E ← rot(a, θ)ᵀ E column by column, from c = cos θ and s = sin θ (RBDA eq. 2.24, transposed):
+/// each column e becomes c e − s a×e + (1 − c)(a·e) a, without forming the rotation matrix.
+template <class S>
+SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c, const S& s) {
+  for (int k = 0; k < 3; ++k) {
+    const Vector3<S> e = E.col(k);
+    E.col(k) = c * e - s * cross_3d(a, e) + ((S(1) - c) * a.dot(e)) * a;
+  }
+}
+
+/// E ← E_J(θ) E for the rotation about the joint's axis (RBDA Table 4.1, revolute).
+template <class S>
+SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, Matrix3<S>& E, const S& s, const S& c) {
+  switch (j.axis_kind) {
+    case AxisKind::X: rotate_rows(E, 1, 2, c, s); return;
+    case AxisKind::Y: rotate_rows(E, 2, 0, c, s); return;
+    case AxisKind::Z: rotate_rows(E, 0, 1, c, s); return;
+    case AxisKind::General: rotate_about_axis(E, j.axis, c, s); return;
+  }
+}
+
+}  // namespace detail
+}  // namespace spatial_dynamics
