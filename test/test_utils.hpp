@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -15,6 +17,18 @@ namespace sd_test {
 namespace sd = spatial_dynamics;
 
 inline std::string robot_path(const std::string& file) { return std::string(robots_dir()) + "/" + file; }
+
+/// The URDF text of a bundled robot.
+inline std::string robot_text(const std::string& file) {
+  std::ifstream in(robot_path(file));
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// `urdf` with `extra` (links and joints) added before </robot>.
+inline std::string with_extra_elements(const std::string& urdf, const std::string& extra) {
+  const std::size_t end = urdf.rfind("</robot>");
+  return urdf.substr(0, end) + extra + urdf.substr(end);
+}
 
 /// Every robot of the shared set, by file name.
 inline const std::vector<std::string>& robot_files() {
@@ -33,7 +47,7 @@ double relative_error(const A& x, const B& ref) {
 
 /// A random configuration: joints uniform within their limits (in [−π, π] where the URDF gives
 /// none or an empty range, as the double pendulum's lower = upper = 0 does), a unit
-/// quaternion for a free root.
+/// quaternion for a free joint, a planar joint's translations in (−1, 1).
 inline Eigen::VectorXd random_configuration(const sd::Model<double>& model, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Eigen::VectorXd q(model.nq);
@@ -44,6 +58,10 @@ inline Eigen::VectorXd random_configuration(const sd::Model<double>& model, std:
       Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
       quat.normalize();
       q.segment<4>(j.idx_q + 3) = quat;
+    } else if (j.type == sd::JointType::Planar) {  // x, y in (−1, 1) m, yaw in (−π, π)
+      q[j.idx_q] = u(rng);
+      q[j.idx_q + 1] = u(rng);
+      q[j.idx_q + 2] = M_PI * u(rng);
     } else if (std::isfinite(j.limits.position_lower) && std::isfinite(j.limits.position_upper) &&
                j.limits.position_upper > j.limits.position_lower) {  // an empty range (lower = upper = 0) means no limit
       const double mid = 0.5 * (j.limits.position_lower + j.limits.position_upper);

@@ -111,13 +111,7 @@ class Builder {
     add_body(-1, "", Transform::Identity(), Joint<double>());  // body 0: the fixed base
     if (options_.floating_base) {
       model_.body_names[0] = "universe";
-      Joint<double> free;
-      free.type = JointType::Free;
-      free.axis_kind = AxisKind::General;
-      free.axis.setZero();
-      free.nq = 7;
-      free.nv = 6;
-      const int body = add_body(0, options_.root_joint_name, Transform::Identity(), free);
+      const int body = add_body(0, options_.root_joint_name, Transform::Identity(), free_joint());
       visit(*root, body, Transform::Identity());
     } else {
       visit(*root, 0, Transform::Identity());
@@ -194,25 +188,62 @@ class Builder {
           visit(*child, add_body(body, joint->name, X_joint_body, movable_joint(*joint)), Transform::Identity());
           break;
         case urdf::Joint::FLOATING:
+          if (joint->mimic) throw ModelError("joint '" + joint->name + "': a floating joint cannot mimic another joint");
+          visit(*child, add_body(body, joint->name, X_joint_body, free_joint()), Transform::Identity());
+          break;
         case urdf::Joint::PLANAR:
-          throw ModelError("joint '" + joint->name + "': " +
-                           (joint->type == urdf::Joint::FLOATING ? "floating" : "planar") +
-                           " joints inside the tree are not supported (a free root joint is requested with the "
-                           "floating-base option instead)");
+          visit(*child, add_body(body, joint->name, X_joint_body, planar_joint(*joint)), Transform::Identity());
+          break;
         default:
           throw ModelError("joint '" + joint->name + "': unknown joint type");
       }
     }
   }
 
-  Joint<double> movable_joint(const urdf::Joint& uj) {
-    Joint<double> j;
-    j.type = uj.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
+  /// A free joint (model/joints/free.hpp): the floating root, or a URDF floating joint.
+  static Joint<double> free_joint() {
+    Joint<double> free;
+    free.type = JointType::Free;
+    free.axis_kind = AxisKind::General;
+    free.axis.setZero();
+    free.nq = 7;
+    free.nv = 6;
+    return free;
+  }
+
+  /// The joint's unit axis; a zero or non-finite one is an error naming the joint.
+  static Eigen::Vector3d unit_axis(const urdf::Joint& uj) {
     const Eigen::Vector3d axis(uj.axis.x, uj.axis.y, uj.axis.z);
     if (!axis.allFinite()) throw ModelError("joint '" + uj.name + "': axis is not finite");
     const double norm = axis.norm();
     if (!(norm > 1e-12)) throw ModelError("joint '" + uj.name + "': axis is zero");
-    j.axis = axis / norm;  // URDF axes are unit vectors; a non-unit one is normalised as urdfdom documents
+    return axis / norm;  // URDF axes are unit vectors; a non-unit one is normalised as urdfdom documents
+  }
+
+  /// A planar joint (model/joints/planar.hpp): the URDF axis is the plane's normal n; e₁ is the
+  /// first of the joint frame's x, y, z axes most nearly perpendicular to n, made exactly so, and
+  /// e₂ = n × e₁ (n = z gives e₁ = x, e₂ = y). URDF gives planar joints no per-coordinate limits.
+  Joint<double> planar_joint(const urdf::Joint& uj) {
+    if (uj.mimic) throw ModelError("joint '" + uj.name + "': a planar joint cannot mimic another joint");
+    Joint<double> j;
+    j.type = JointType::Planar;
+    j.nq = 3;
+    j.nv = 3;
+    j.axis = unit_axis(uj);
+    j.axis_kind = classify_axis(j.axis);
+    int least = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(j.axis[k]) < std::abs(j.axis[least])) least = k;
+    const Eigen::Vector3d e = Eigen::Vector3d::Unit(least);
+    j.plane_x = (e - e.dot(j.axis) * j.axis).normalized();
+    j.plane_y = j.axis.cross(j.plane_x);
+    return j;
+  }
+
+  Joint<double> movable_joint(const urdf::Joint& uj) {
+    Joint<double> j;
+    j.type = uj.type == urdf::Joint::PRISMATIC ? JointType::Prismatic : JointType::Revolute;
+    j.axis = unit_axis(uj);
     j.axis_kind = classify_axis(j.axis);
     if (uj.limits) {
       if (uj.type != urdf::Joint::CONTINUOUS) {

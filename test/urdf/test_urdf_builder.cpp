@@ -200,32 +200,66 @@ TEST(UrdfRejection, ZeroJointAxis) {
   EXPECT_CONTAINS(msg, "axis is zero");
 }
 
-TEST(UrdfRejection, FloatingJointInsideTree) {
-  const std::string xml = robot(link("base") + link("l1") + link("l2") +
+TEST(UrdfBuilder, FloatingJointInsideTreeIsAFreeJointWithTheRootsCoordinateNames) {
+  const std::string xml = robot(link("base") + link("l1", inertial("1")) + link("l2", inertial("2")) +
                                 joint("j1", "revolute", "base", "l1", "<axis xyz=\"1 0 0\"/>") +
                                 joint("float_j", "floating", "l1", "l2"));
-  const std::string msg = rejection(xml);
-  EXPECT_CONTAINS(msg, "'float_j'");
-  EXPECT_CONTAINS(msg, "floating");
-  EXPECT_CONTAINS(msg, "not supported");
+  const sd::Model<double> model = sd::build_model_from_urdf_string(xml);
+  ASSERT_EQ(model.nbodies(), 3);
+  EXPECT_EQ(model.joints[2].type, sd::JointType::Free);
+  EXPECT_EQ(model.parent[2], 1);
+  EXPECT_EQ(model.nq, 8);
+  EXPECT_EQ(model.nv, 7);
+  EXPECT_TRUE(model.has_multi_dof_tree_joints);
+  const std::vector<std::string> velocities = model.velocityNames();
+  EXPECT_EQ(velocities, (std::vector<std::string>{"j1", "float_j/wx", "float_j/wy", "float_j/wz", "float_j/vx",
+                                                  "float_j/vy", "float_j/vz"}));
+  EXPECT_EQ(model.positionNames().back(), "float_j/qw");
 }
 
-TEST(UrdfRejection, PlanarJointInsideTree) {
-  const std::string xml = robot(link("base") + link("l1") + joint("plane_j", "planar", "base", "l1",
-                                                                   "<axis xyz=\"0 0 1\"/>"));
-  const std::string msg = rejection(xml);
+TEST(UrdfBuilder, PlanarJointHasThreeCoordinatesAndInPlaneAxesPerpendicularToTheNormal) {
+  for (const char* normal : {"0 0 1", "1 0 0", "0 1 0", "0.3 -0.4 0.5"}) {
+    const std::string xml = robot(link("base") + link("l1", inertial("1")) +
+                                  joint("plane_j", "planar", "base", "l1", std::string("<axis xyz=\"") + normal + "\"/>"));
+    const sd::Model<double> model = sd::build_model_from_urdf_string(xml);
+    const sd::Joint<double>& j = model.joints[1];
+    EXPECT_EQ(j.type, sd::JointType::Planar);
+    EXPECT_EQ(model.nq, 3);
+    EXPECT_EQ(model.nv, 3);
+    EXPECT_EQ(model.velocityNames(), (std::vector<std::string>{"plane_j/x", "plane_j/y", "plane_j/yaw"}));
+    EXPECT_NEAR(j.axis.norm(), 1.0, 1e-15) << normal;
+    EXPECT_NEAR(j.plane_x.norm(), 1.0, 1e-15) << normal;
+    EXPECT_NEAR(j.plane_x.dot(j.axis), 0.0, 1e-15) << normal;
+    EXPECT_LT((j.plane_y - j.axis.cross(j.plane_x)).norm(), 1e-15) << normal;
+  }
+  const sd::Model<double> z = sd::build_model_from_urdf_string(
+      robot(link("base") + link("l1", inertial("1")) + joint("plane_j", "planar", "base", "l1", "<axis xyz=\"0 0 1\"/>")));
+  EXPECT_EQ(z.joints[1].plane_x, Eigen::Vector3d::UnitX());  // the joint frame's own x and y
+  EXPECT_EQ(z.joints[1].plane_y, Eigen::Vector3d::UnitY());
+}
+
+TEST(UrdfRejection, PlanarJointWithZeroAxisOrMimic) {
+  std::string msg = rejection(robot(link("base") + link("l1", inertial("1")) +
+                                    joint("plane_j", "planar", "base", "l1", "<axis xyz=\"0 0 0\"/>")));
   EXPECT_CONTAINS(msg, "'plane_j'");
-  EXPECT_CONTAINS(msg, "planar");
-  EXPECT_CONTAINS(msg, "not supported");
+  EXPECT_CONTAINS(msg, "axis is zero");
+  msg = rejection(robot(link("base") + link("l1", inertial("1")) + link("l2", inertial("1")) +
+                        joint("j1", "revolute", "base", "l1", "<axis xyz=\"1 0 0\"/>") +
+                        joint("plane_j", "planar", "l1", "l2", "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/>")));
+  EXPECT_CONTAINS(msg, "'plane_j'");
+  EXPECT_CONTAINS(msg, "cannot mimic");
 }
 
-TEST(UrdfRejection, FloatingJointInsideTreeEvenWithFloatingBaseOption) {
+TEST(UrdfBuilder, FloatingJointInsideTreeWithFloatingBaseOption) {
   sd::ModelBuildOptions options;
   options.floating_base = true;
-  const std::string msg = rejection(robot(link("base") + link("l1") + joint("float_j", "floating", "base", "l1")),
-                                    options);
-  EXPECT_CONTAINS(msg, "'float_j'");
-  EXPECT_CONTAINS(msg, "floating");
+  const sd::Model<double> model = sd::build_model_from_urdf_string(
+      robot(link("base", inertial("1")) + link("l1", inertial("1")) + joint("float_j", "floating", "base", "l1")), options);
+  ASSERT_EQ(model.nbodies(), 3);
+  EXPECT_EQ(model.joints[1].type, sd::JointType::Free);  // the root
+  EXPECT_EQ(model.joints[2].type, sd::JointType::Free);
+  EXPECT_EQ(model.nv, 12);
+  EXPECT_TRUE(model.has_multi_dof_tree_joints);
 }
 
 TEST(UrdfRejection, MalformedXml) {

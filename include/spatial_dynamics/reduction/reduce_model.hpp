@@ -47,10 +47,13 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
     if (!std::isfinite(position)) throw SceneError("locked position of joint '" + name + "' is not finite");
   }
   for (int i = 1; i < n; ++i) {
-    if (full.joints[i].type != JointType::Free) continue;
+    if (full.joints[i].nv == 1) continue;
     if (scene.locked_positions.count(full.joint_names[i]))
-      throw SceneError("the free root joint '" + full.joint_names[i] + "' cannot be locked");
-    kept[i] = 1;  // a floating base stays floating
+      throw SceneError(full.floating_base && i == 1
+                           ? "the free root joint '" + full.joint_names[i] + "' cannot be locked"
+                           : "joint '" + full.joint_names[i] + "' has " + std::to_string(full.joints[i].nv) +
+                                 " coordinates (a locked position is one value), so it cannot be locked");
+    kept[i] = 1;  // a floating base stays floating; a planar or floating joint in the tree stays too
   }
 
   Model<S> reduced;

@@ -9,7 +9,8 @@
 namespace spatial_dynamics {
 
 struct Scene {
-  /// Joints that stay degrees of freedom. Every other 1-DoF joint is locked.
+  /// Joints that stay degrees of freedom. Every other 1-DoF joint is locked; free and planar
+  /// joints always stay.
   std::vector<std::string> kept_joints;
   /// Positions of locked joints; a locked joint not listed here is locked at 0.
   std::map<std::string, double> locked_positions;
