@@ -195,8 +195,8 @@ std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::s
   auto robot = std::make_shared<ServedRobot>();
   robot->bare = std::make_shared<const Model<double>>(build_model_from_urdf_string(urdf, options));
   robot->full = std::make_shared<const Model<double>>(with_payloads(*robot->bare, payloads));
-  std::vector<std::string> joints(robot->bare->joint_names.begin() + 1, robot->bare->joint_names.end());
-  robot->cache = std::make_shared<JointStateCache>(joints, max_state_age_, unknown_joints_);
+  // One joint state per coordinate: a joint's name, or <joint>/x, /y, /yaw of a planar joint.
+  robot->cache = std::make_shared<JointStateCache>(robot->bare->velocityNames(), max_state_age_, unknown_joints_);
   robot->robot_name = robot->bare->name;
   robot->root_frame = robot->bare->body_names[0];
   return robot;
@@ -240,7 +240,8 @@ std::shared_ptr<const ServedScene> DynamicsNode::buildScene(const std::shared_pt
       robot->cache->snapshot(state);
       const std::vector<std::string>& names = robot->cache->jointNames();
       for (std::size_t i = 0; i < names.size(); ++i) {
-        if (kept.count(names[i])) continue;
+        // Kept, or a coordinate of a planar joint, which a scene keeps (reduce_model.hpp).
+        if (kept.count(names[i]) || !full.hasJoint(names[i])) continue;
         const double position = state.position_known[i] ? state.position[i] : 0.0;  // latest joint state, else 0
         spec.locked_positions[names[i]] = position;
         scene->locks.emplace_back(static_cast<int>(i), position);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,15 +12,20 @@ JointRequestDecoder::JointRequestDecoder(const Model<double>& model, const std::
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<double>& j = model.joints[i];
     if (j.coupled) continue;  // follows its master: no coordinate of its own
-    if (j.nv != 1) throw std::invalid_argument("joint '" + model.joint_names[i] + "': only 1-DoF joints are served");
-    const auto it = std::find(state_joint_names.begin(), state_joint_names.end(), model.joint_names[i]);
-    if (it == state_joint_names.end())
-      throw std::invalid_argument("joint '" + model.joint_names[i] + "' is not among the joint states");
-    index_[model.joint_names[i]] = static_cast<int>(names_.size());
-    names_.push_back(model.joint_names[i]);
-    state_index_.push_back(static_cast<int>(it - state_joint_names.begin()));
-    lower_.push_back(j.limits.position_lower);
-    upper_.push_back(j.limits.position_upper);
+    if (j.nq != j.nv)
+      throw std::invalid_argument("joint '" + model.joint_names[i] + "': a free joint has " + std::to_string(j.nq) +
+                                  " position and " + std::to_string(j.nv) +
+                                  " velocity coordinates, which the services do not serve (the library does)");
+    // One coordinate per name: the joint's own, or <joint>/x, /y, /yaw of a planar joint.
+    for (const std::string& name : visit_joint(j, [&](auto joint) { return joint.velocity_names(model.joint_names[i]); })) {
+      const auto it = std::find(state_joint_names.begin(), state_joint_names.end(), name);
+      if (it == state_joint_names.end()) throw std::invalid_argument("joint '" + name + "' is not among the joint states");
+      index_[name] = static_cast<int>(names_.size());
+      names_.push_back(name);
+      state_index_.push_back(static_cast<int>(it - state_joint_names.begin()));
+      lower_.push_back(j.nv == 1 ? j.limits.position_lower : -std::numeric_limits<double>::infinity());
+      upper_.push_back(j.nv == 1 ? j.limits.position_upper : std::numeric_limits<double>::infinity());
+    }
   }
 }
 
