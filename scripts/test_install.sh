@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the package into a scratch catkin workspace and uses it from there, as another package
 # would; ends with the line "N passed, N failed" and fails when any check failed.
-#   test_install.sh            (the workspaces go to build/install_test/, removed first)
+#   test_install.sh            (the workspaces go to build/install_test/, removed first and at the
+#                              end; the logs stay there)
 # 1. copies the package (its git-tracked and untracked-but-not-ignored files) to
 #    build/install_test/ws/src/ and runs Debian's `catkin_make install` there (no tests, no benchmark);
 # 2. moves the workspace's src/, build/ and devel/ away (to build/install_test/moved/), so that
@@ -44,6 +45,9 @@ fail_check() {
   fi
 }
 finish() {
+  # The workspaces hold copies of the package (its launch files among them): left inside the
+  # package's directory, roslaunch would find two of each by name afterwards. The logs stay.
+  rm -rf "$ws" "$user_ws" "$base/moved"
   echo "install test: $((SECONDS - started)) s (logs in ${base#"$root/"}/)"
   echo "$passed passed, $failed failed"
   exit $((failed > 0 ? 1 : 0))
