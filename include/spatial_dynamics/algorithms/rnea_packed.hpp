@@ -28,47 +28,6 @@ bool rnea_takes_packed_path(const Model<S>& model) {
 
 #ifdef SD_PACKED3
 
-/// The columns of E = X_J(θ) E_tree for a revolute joint: rows (m, n) of E_tree rotated as in
-/// revolute_up_transform, c_k ← (c on lanes m, n; 1 elsewhere) ∘ c_k + (s, −s on lanes m, n) ∘ c_k
-/// with lanes m and n swapped; a general axis multiplies by rot(a, θ)ᵀ (RBDA eq. 2.24).
-SD_INLINE void packed_revolute_rotation(const Joint<double>& j, double s, double c, packed3::Packed3& c0,
-                                        packed3::Packed3& c1, packed3::Packed3& c2, packed3::Packed3& axis) {
-  using namespace packed3;
-  // c_k ← cv ∘ c_k + sv ∘ (c_k with lanes m and n swapped), for rows (m, n) = (1, 2), (2, 0), (0, 1).
-  const auto rotate_rows = [&](const Packed3& cv, const Packed3& sv, const LaneIndex& swap) {
-    c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
-    c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
-    c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
-  };
-  switch (j.axis_kind) {
-    case AxisKind::X:
-      rotate_rows(Packed3{1, c, c, 1}, Packed3{0, s, -s, 0}, LaneIndex{0, 2, 1, 3});
-      axis = make(1, 0, 0);
-      return;
-    case AxisKind::Y:
-      rotate_rows(Packed3{c, 1, c, 1}, Packed3{-s, 0, s, 0}, LaneIndex{2, 1, 0, 3});
-      axis = make(0, 1, 0);
-      return;
-    case AxisKind::Z:
-      rotate_rows(Packed3{c, c, 1, 1}, Packed3{s, -s, 0, 0}, LaneIndex{1, 0, 2, 3});
-      axis = make(0, 0, 1);
-      return;
-    default: {
-      // rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ, column by column.
-      const Vector3<double>& a = j.axis;
-      axis = make(a.x(), a.y(), a.z());
-      const double k = 1 - c;
-      const Packed3 r0 = (k * a.x()) * axis + make(c, -s * a.z(), s * a.y());
-      const Packed3 r1 = (k * a.y()) * axis + make(s * a.z(), c, -s * a.x());
-      const Packed3 r2 = (k * a.z()) * axis + make(-s * a.y(), s * a.x(), c);
-      c0 = mat_vec(r0, r1, r2, c0);
-      c1 = mat_vec(r0, r1, r2, c1);
-      c2 = mat_vec(r0, r1, r2, c2);
-      return;
-    }
-  }
-}
-
 /// ^iX_λ = X_J(q_i) X_tree(i) (RBDA Table 4.1) of a revolute or prismatic joint: the columns
 /// c0..c2 of E, its rows t0..t2, r, and the joint's axis; sin and cos from data.
 SD_INLINE void packed_up_transform(const Model<double>& model, const Data<double>& data, int i, const double* q,
@@ -81,10 +40,9 @@ SD_INLINE void packed_up_transform(const Model<double>& model, const Data<double
   load_columns(Xt.E, c0, c1, c2);
   r = load_after(Xt.E.data() + 8);
   if (one_dof_rotates(j)) {
-    packed_revolute_rotation(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2, axis);
-  } else {
-    axis = make(j.axis.x(), j.axis.y(), j.axis.z());
+    packed_rotate_about_joint_axis(j, data.joint_sin[i], data.joint_cos[i], c0, c1, c2);
   }
+  axis = make(j.axis.x(), j.axis.y(), j.axis.z());
   transpose(c0, c1, c2, t0, t1, t2);
   if (!one_dof_rotates(j)) r += mat_vec(t0, t1, t2, q[j.idx_q] * axis);  // r = r_tree + E_treeᵀ (q a)
 }

@@ -4,18 +4,33 @@
 
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 
 namespace spatial_dynamics {
 
 /// v × m = (ω×ω_m ; ω×v_m + v×ω_m)   (eq. 17)
 template <class S>
 SD_INLINE MotionVector<S> cross(const MotionVector<S>& v, const MotionVector<S>& m) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    using namespace packed3;
+    const Packed3 w = load3(v.angular), u = load3(v.linear), mw = load3(m.angular), mv = load3(m.linear);
+    return {to_vector3(cross(w, mw)), to_vector3(cross(w, mv) + cross(u, mw))};
+  }
+#endif
   return {cross_3d(v.angular, m.angular), Vector3<S>(cross_3d(v.angular, m.linear) + cross_3d(v.linear, m.angular))};
 }
 
 /// v ×* f = (ω×n + v×f ; ω×f)   (eq. 18)
 template <class S>
 SD_INLINE ForceVector<S> cross(const MotionVector<S>& v, const ForceVector<S>& f) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    using namespace packed3;
+    const Packed3 w = load3(v.angular), u = load3(v.linear), n = load3(f.angular), l = load3(f.linear);
+    return {to_vector3(cross(w, n) + cross(u, l)), to_vector3(cross(w, l))};
+  }
+#endif
   return {Vector3<S>(cross_3d(v.angular, f.angular) + cross_3d(v.linear, f.linear)), cross_3d(v.angular, f.linear)};
 }
 

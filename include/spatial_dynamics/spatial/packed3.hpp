@@ -1,13 +1,15 @@
-// A 3-vector of doubles held in one 4-lane vector register (x, y, z, pad), for the packed RNEA
-// (algorithms/rnea_packed.hpp). With AVX2 and FMA a cross product is three lane permutations, a
+// A 3-vector of doubles held in one 4-lane vector register (x, y, z, pad): how the spatial
+// primitives for double are implemented where the CPU has AVX2 and FMA (the cross products, the
+// Plücker transform's rotations, the rigid inertia's product, the joint rotation), and what the
+// packed RNEA and CRBA passes hold their bodies in. A cross product is three lane permutations, a
 // product and a fused subtraction; a 3×3 matrix times a vector is three broadcasts, a product and
 // two fused additions: about a third of the instructions of the same operations on Eigen's
 // 3-vectors, which mix scalar and 2-lane code. Only lanes 0–2 carry the vector: the pad lane holds
-// whatever the load brought with it (a neighbouring coefficient of the same struct) and no
-// operation below moves it into lanes 0–2.
+// whatever the load brought with it and no operation below moves it into lanes 0–2.
 //
-// Available with GCC when AVX2 and FMA are enabled (-march=native on such a machine,
-// or -mavx2 -mfma): SD_PACKED3 is then defined. Otherwise the scalar code is used everywhere.
+// Selected here, in one place: with GCC where AVX2 and FMA are enabled (the compiled library's
+// AVX2 build, simd_backend.hpp; or -mavx2 -mfma, -march=native) SD_PACKED3 is defined, and each
+// primitive's double case takes its packed form; otherwise every scalar takes the Eigen code.
 #pragma once
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__AVX2__) && defined(__FMA__)
@@ -15,6 +17,11 @@
 #endif
 
 #include <cstring>
+#include <type_traits>
+
+#ifdef SD_PACKED3
+#include <immintrin.h>
+#endif
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 
@@ -46,6 +53,22 @@ SD_INLINE Packed3 load_after(const double* p) { return __builtin_shuffle(load(p)
 SD_INLINE Packed3 load(const Packed3Storage& s) { return load(s.lane); }
 
 SD_INLINE void store(Packed3 x, Packed3Storage& s) { std::memcpy(s.lane, &x, sizeof x); }
+
+/// A 3-vector from exactly three doubles (two loads: nothing past p[2] is read; pad 0).
+SD_INLINE Packed3 load3(const double* p) {
+  return (Packed3)_mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
+}
+SD_INLINE Packed3 load3(const Vector3<double>& v) { return load3(v.data()); }
+/// Lanes 0–2 into exactly three doubles.
+SD_INLINE void store3(Packed3 x, double* p) {
+  _mm_storeu_pd(p, _mm256_castpd256_pd128((__m256d)x));
+  _mm_store_sd(p + 2, _mm256_extractf128_pd((__m256d)x, 1));
+}
+SD_INLINE Vector3<double> to_vector3(Packed3 x) {
+  Vector3<double> v;
+  store3(x, v.data());
+  return v;
+}
 
 /// (x, y, z, 0).
 SD_INLINE Packed3 make(double x, double y, double z) { return Packed3{x, y, z, 0.0}; }
@@ -79,6 +102,13 @@ SD_INLINE void load_columns(const Matrix3<double>& M, Packed3& c0, Packed3& c1, 
   c0 = load(M.data());
   c1 = load(M.data() + 3);
   c2 = load_after(M.data() + 5);
+}
+
+/// The columns of a column-major 3×3 matrix (nine doubles from E on).
+SD_INLINE void columns(const double* E, Packed3& c0, Packed3& c1, Packed3& c2) {
+  c0 = load3(E);
+  c1 = load3(E + 3);
+  c2 = load3(E + 6);
 }
 
 }  // namespace packed3

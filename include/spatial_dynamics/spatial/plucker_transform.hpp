@@ -10,6 +10,7 @@
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 namespace spatial_dynamics {
@@ -35,6 +36,15 @@ struct PluckerTransform {
 
   // ---- motions: X m = (E ω ; E (v − r×ω))   (eq. 11) -------------------------------------
   SD_INLINE MotionVector<S> apply(const MotionVector<S>& m) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      using namespace packed3;
+      Packed3 c0, c1, c2;
+      columns(E.data(), c0, c1, c2);
+      const Packed3 w = load3(m.angular), v = load3(m.linear);
+      return {to_vector3(mat_vec(c0, c1, c2, w)), to_vector3(mat_vec(c0, c1, c2, v - cross(load3(r), w)))};
+    }
+#endif
     return {E * m.angular, E * (m.linear - cross_3d(r, m.angular))};
   }
   /// X (0 ; v) = (0 ; E v): a motion without angular part (such as the base's acceleration −a_g)
@@ -52,6 +62,16 @@ struct PluckerTransform {
   }
   /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
   SD_INLINE ForceVector<S> applyInverse(const ForceVector<S>& f) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      using namespace packed3;
+      Packed3 c0, c1, c2, t0, t1, t2;
+      columns(E.data(), c0, c1, c2);
+      transpose(c0, c1, c2, t0, t1, t2);
+      const Packed3 lin = mat_vec(t0, t1, t2, load3(f.linear));
+      return {to_vector3(mat_vec(t0, t1, t2, load3(f.angular)) + cross(load3(r), lin)), to_vector3(lin)};
+    }
+#endif
     const Vector3<S> lin = E.transpose() * f.linear;
     return {E.transpose() * f.angular + cross_3d(r, lin), lin};
   }

@@ -8,6 +8,7 @@
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 
 namespace spatial_dynamics {
 
@@ -45,6 +46,15 @@ struct RigidInertia {
 
   /// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25 applied to a motion vector)
   SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      using namespace packed3;
+      Packed3 I0, I1, I2;
+      columns(rotational_inertia.data(), I0, I1, I2);
+      const Packed3 h = load3(first_moment), w = load3(v.angular), lin = load3(v.linear);
+      return {to_vector3(mat_vec(I0, I1, I2, w) + cross(h, lin)), to_vector3(mass * lin - cross(h, w))};
+    }
+#endif
     return {rotational_inertia * v.angular + cross_3d(first_moment, v.linear),
             mass * v.linear - cross_3d(first_moment, v.angular)};
   }

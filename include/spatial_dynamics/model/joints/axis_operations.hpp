@@ -7,6 +7,7 @@
 #include "spatial_dynamics/spatial/cross.hpp"
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/lane_trigonometry.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
@@ -108,9 +109,52 @@ SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c,
   }
 }
 
+#ifdef SD_PACKED3
+/// E ← E_J(θ) E on E's columns c0..c2 held packed: for a coordinate axis rows (m, n) as
+/// rotate_rows turns them, c_k ← (c on lanes m, n; 1 elsewhere) ∘ c_k + (s, −s on lanes m, n) ∘
+/// (c_k with lanes m and n swapped); a general axis multiplies by rot(a, θ)ᵀ (RBDA eq. 2.24).
+SD_INLINE void packed_rotate_about_joint_axis(const Joint<double>& j, double s, double c, packed3::Packed3& c0,
+                                              packed3::Packed3& c1, packed3::Packed3& c2) {
+  using namespace packed3;
+  const auto rotate_rows = [&](const Packed3& cv, const Packed3& sv, const LaneIndex& swap) SD_INLINE_LAMBDA {
+    c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
+    c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
+    c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
+  };
+  switch (j.axis_kind) {
+    case AxisKind::X: rotate_rows(Packed3{1, c, c, 1}, Packed3{0, s, -s, 0}, LaneIndex{0, 2, 1, 3}); return;
+    case AxisKind::Y: rotate_rows(Packed3{c, 1, c, 1}, Packed3{-s, 0, s, 0}, LaneIndex{2, 1, 0, 3}); return;
+    case AxisKind::Z: rotate_rows(Packed3{c, c, 1, 1}, Packed3{s, -s, 0, 0}, LaneIndex{1, 0, 2, 3}); return;
+    case AxisKind::General: break;
+  }
+  // rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ, by its rows r0..r2.
+  const Vector3<double>& a = j.axis;
+  const Packed3 axis = make(a.x(), a.y(), a.z());
+  const double k = 1 - c;
+  const Packed3 r0 = (k * a.x()) * axis + make(c, -s * a.z(), s * a.y());
+  const Packed3 r1 = (k * a.y()) * axis + make(s * a.z(), c, -s * a.x());
+  const Packed3 r2 = (k * a.z()) * axis + make(-s * a.y(), s * a.x(), c);
+  c0 = mat_vec(r0, r1, r2, c0);
+  c1 = mat_vec(r0, r1, r2, c1);
+  c2 = mat_vec(r0, r1, r2, c2);
+}
+#endif
+
 /// E ← E_J(θ) E for the rotation about the joint's axis (RBDA Table 4.1, revolute).
 template <class S>
 SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, Matrix3<S>& E, const S& s, const S& c) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value) {
+    using namespace packed3;
+    Packed3 c0, c1, c2;
+    columns(E.data(), c0, c1, c2);
+    packed_rotate_about_joint_axis(j, s, c, c0, c1, c2);
+    store3(c0, E.data());
+    store3(c1, E.data() + 3);
+    store3(c2, E.data() + 6);
+    return;
+  }
+#endif
   switch (j.axis_kind) {
     case AxisKind::X: rotate_rows(E, 1, 2, c, s); return;
     case AxisKind::Y: rotate_rows(E, 2, 0, c, s); return;
