@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Builds the whole package (libraries, node, tools, tests) with sanitizers into a build directory of
-# its own and runs the tests there; the last line is "N passed, N failed".
+# Builds the package with sanitizers into a build directory of its own (for `unit`, the unit tests
+# and the libraries they link; otherwise the libraries, the node, the tools and every test) and
+# runs the tests there; the last line is "N passed, N failed".
 #   run_sanitized_tests.sh address [all|unit|rostest]
 #       AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, in build-asan/ (default: all)
 #   run_sanitized_tests.sh thread [all|unit|rostest]
 #       ThreadSanitizer, in build-tsan/ (default: all)
-# The build is optimised (-O1 for address, -O2 for thread) with -g and assertions on (Eigen's
+# The build is optimised (-O1 for address, -O2 for thread) with line tables (-g1) and assertions on (Eigen's
 # index and size checks, and _GLIBCXX_ASSERTIONS for the standard containers). Every sanitizer writes its reports into
 # BUILD_DIR/sanitizer_reports/, and each report counts as a failed test (scripts/test_suite.sh):
 # that is how a finding in the node, whose exit code rostest ignores, fails the run.
@@ -25,9 +26,15 @@ case "$kind" in
   *) fail "usage: run_sanitized_tests.sh address|thread [all|unit|rostest]" ;;
 esac
 
+# The unit tests need neither the node nor its integration tests: only they are built then.
+case "$selection" in
+  unit) targets=(unit_tests) ;;
+  *) targets=(all tests) ;;
+esac
+
 bash scripts/install_dependencies.sh || fail "installing dependencies failed"
 bash scripts/build.sh -B "$build_dir" -DSPATIAL_DYNAMICS_SANITIZE="$sanitizers" -DSPATIAL_DYNAMICS_BENCHMARK=OFF \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimisation -g" all tests ||
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$optimisation -g1" "${targets[@]}" ||
   fail "the $kind-sanitized build failed"
 
 reports="$PWD/$build_dir/sanitizer_reports"
