@@ -28,16 +28,17 @@ SD_INLINE void rnea_backward_pass(const Model<S>& model, Data<S>& data) {
   }
 }
 
+/// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈).
 template <class S>
 const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                             const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
-                            const ForceVector<S>* f_ext) {
+                            const ForceVector<S>* f_ext, const Vector3<S>& gravity) {
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   check_length("acceleration", qdd.size(), model.nv);
   joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -gravity);  // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
@@ -76,6 +77,19 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   return data.tau;
 }
 
+template <class S>
+const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                            const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext) {
+  return rnea_impl(model, data, q, qd, qdd, f_ext, model.gravity);
+}
+
+/// M(q) x = ID(q, 0, x) without gravity (RBDA eq. 5.1 with q̇ = 0 and a_g = 0); data.zero_v as q̇.
+template <class S>
+const VectorX<S>& mass_matrix_times(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                                    const ConstVectorRef<S>& x) {
+  return rnea_impl<S>(model, data, q, data.zero_v, x, nullptr, Vector3<S>(Vector3<S>::Zero()));
+}
+
 /// The packed path (rnea_packed.hpp) where it applies, rnea_impl otherwise.
 template <class S>
 SD_INLINE void rnea_dispatch(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
@@ -89,22 +103,6 @@ SD_INLINE void rnea_dispatch(const Model<S>& model, Data<S>& data, const ConstVe
   }
 #endif
   rnea_impl(model, data, q, qd, qdd, f_ext);
-}
-
-/// RNEA with q̇ = q̈ = 0: every v_i and c_i vanish, so a_i = ^iX_λ a_λ and f_i = I_i a_i
-/// (RBDA Table 5.1 with the velocity terms dropped).
-template <class S>
-const VectorX<S>& gravity_rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
-  check_length("q", q.size(), model.nq);
-  joint_sines_and_cosines(model, data, q.data());
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
-  for (int i = 1; i < model.nbodies(); ++i) {
-    body_up_transform(model, data, i, q.data(), data.X_up[i]);
-    data.a[i] = data.X_up[i].apply(data.a[model.parent[i]]);                       // a_i = X a_λ
-    data.f[i] = model.inertia[i] * data.a[i];                                      // f_i = I a_i
-  }
-  rnea_backward_pass(model, data);
-  return data.tau;
 }
 
 }  // namespace detail
@@ -133,19 +131,7 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
 /// Gravity torques g(q) = ID(q, 0, 0).
 template <class S>
 const VectorX<S>& gravity_torques(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value) {
-    if (detail::rnea_takes_packed_path(model)) {  // the full packed RNEA beats the scalar one without velocities
-      detail::rnea_packed_impl(model, data, q, data.zero_v, data.zero_v, nullptr);
-      detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
-      return data.tau;
-    }
-  }
-#endif
-  detail::gravity_rnea_impl(model, data, q);
-  for (int i = 1; i < model.nbodies(); ++i) data.v[i] = MotionVector<S>::Zero();  // as rnea leaves them
-  detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
-  return data.tau;
+  return rnea<S>(model, data, q, data.zero_v, data.zero_v);
 }
 
 /// Nonlinear effects C(q, q̇) q̇ + g(q) = ID(q, q̇, 0).

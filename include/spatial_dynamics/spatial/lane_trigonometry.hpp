@@ -5,27 +5,91 @@
 // |k| < 2^20), evaluate the minimax polynomials of sin and cos on |r| ≤ π/4 (the coefficients of
 // fdlibm's k_sin.c and k_cos.c), and pick sign and function by k mod 4. Within 1 ulp of the
 // correctly rounded value plus the reduction's ≈ 1e-21·|k| absolute error. Lanes with |x| > 1e5 or
-// non-finite, and other scalar types, take std::sin and std::cos.
+// non-finite take std::sin and std::cos; other scalar types take sin_cos_wide below, one lane at a
+// time.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <type_traits>
 
+#include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/lanes.hpp"
 
 namespace spatial_dynamics {
+namespace detail {
+
+/// sin x and cos x of one scalar. For long double: Cody–Waite reduction x = k π/2 + y (π/2 split into
+/// three pieces of ≤ 33 bits, so k·piece is exact for |k| < 2^31) and Taylor series of ten terms
+/// on |y| ≤ π/4, whose truncations (|y|²¹/21! < 2e-22 for sin, |y|²⁰/20! < 4e-21 for cos) are
+/// below long double's ε. k is rounded in double (exact to within 1e-11 of x 2/π for |x| ≤ 1e5,
+/// so |y| stays within π/4 + 2e-11), which avoids the x87 rounding-mode switch; glibc's sinl and
+/// cosl take several times longer. Double-double takes its own (double_double.hpp); other types
+/// std::sin and std::cos.
+template <class W>
+inline void sin_cos_wide(const W& x, W& s, W& c) {
+  using std::cos;
+  using std::sin;
+  s = sin(x);
+  c = cos(x);
+}
+/// (−1)^j / (2j + offset)! for j = 0 … count−1: Taylor coefficients of sin (offset 1) and cos (0).
+template <int count>
+constexpr std::array<long double, count> alternating_inverse_factorials(int offset) {
+  std::array<long double, count> c{};
+  long double factorial = 1.0L;
+  int n = 1;
+  for (int j = 0; j < count; ++j) {
+    for (; n <= 2 * j + offset; ++n) factorial *= n;  // exact: the odd part of 22! has 52 bits
+    c[j] = (j % 2 ? -1.0L : 1.0L) / factorial;
+  }
+  return c;
+}
+
+inline void sin_cos_wide(const long double& x, long double& s, long double& c) {
+  if (!(x <= 1e5L && x >= -1e5L)) {
+    s = std::sin(x);
+    c = std::cos(x);
+    return;
+  }
+  constexpr long double pio2_1 = 1.57079632673412561417e+00L;   // 0x3FF921FB 54400000 (fdlibm)
+  constexpr long double pio2_2 = 6.07710050630396597660e-11L;   // 0x3DD0B461 1A600000
+  constexpr long double pio2_3 = 2.02226624871116645580e-21L;   // 0x3BA3198A 2E000000
+  constexpr long double pio2_3t = 8.47842766036889956997e-32L;  // π/2 − pio2_1 − pio2_2 − pio2_3
+  constexpr long double two_over_pi = 0.636619772367581343075535053490057448L;
+  static constexpr std::array<long double, 10> sin_coefficients = alternating_inverse_factorials<10>(1);
+  static constexpr std::array<long double, 10> cos_coefficients = alternating_inverse_factorials<10>(0);
+  constexpr double round_shift = 6755399441055744.0;  // 1.5·2⁵²: adding and subtracting it rounds to an integer
+  const double k_double = (static_cast<double>(x) * static_cast<double>(two_over_pi) + round_shift) - round_shift;
+  const long long quadrant = static_cast<long long>(k_double);  // round(x 2/π)
+  const long double k = k_double;
+  const long double y = (((x - k * pio2_1) - k * pio2_2) - k * pio2_3) - k * pio2_3t;
+  const long double z = y * y;
+  long double ps = sin_coefficients[9], pc = cos_coefficients[9];
+  for (int j = 8; j >= 0; --j) {
+    ps = sin_coefficients[j] + z * ps;  // sin y = y Σ (−z)^j/(2j+1)!
+    pc = cos_coefficients[j] + z * pc;  // cos y = Σ (−z)^j/(2j)!
+  }
+  const long double sy = y * ps;
+  sin_cos_of_quadrant(quadrant, sy, pc, s, c);  // x = k π/2 + y
+}
+
+inline void sin_cos_wide(const DoubleDouble& x, DoubleDouble& s, DoubleDouble& c) { sin_cos(x, s, c); }
+
+}  // namespace detail
+
 
 template <class S, int L>
 SD_LANE_INLINE void sincos_lanes(const Lanes<S, L>& x, Lanes<S, L>& sine, Lanes<S, L>& cosine) {
   using std::abs;
-  using std::cos;
-  using std::sin;
   bool reducible = std::is_same<S, double>::value;
   for (int l = 0; l < L; ++l) reducible = reducible && abs(x[l]) <= S(1e5);  // false for NaN
   if (!reducible) {
     for (int l = 0; l < L; ++l) {
-      sine.set(l, sin(x[l]));
-      cosine.set(l, cos(x[l]));
+      S s, c;
+      detail::sin_cos_wide(x[l], s, c);
+      sine.set(l, s);
+      cosine.set(l, c);
     }
     return;
   }
