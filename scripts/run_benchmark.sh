@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The speed-against-error benchmark: installs what it needs beyond the build and tests (DART,
 # MuJoCo, matplotlib; KDL comes with the tests' dependencies), builds it and runs it.
-# Arguments go to the benchmark (default: --out doc/benchmark); e.g. --quick, --model PATH.
-# Writes results.csv, results.md and benchmark.png into the --out directory.
+# Arguments go to the benchmark; e.g. --quick, --model PATH, --default-build. Writes results.csv,
+# results.md and benchmark.png into the --out directory: by default doc/benchmark/ (the committed
+# results), and build/benchmark_quick/ for --quick, whose short timings must not replace them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_dependencies.sh
@@ -24,6 +25,7 @@ bash scripts/build.sh benchmark
 args=("$@")
 case " $* " in
   *" --out "*) ;;
+  *" --quick "*) args+=(--out build/benchmark_quick) ;;
   *) args+=(--out doc/benchmark) ;;
 esac
 ./build/devel/lib/spatial_dynamics/benchmark "${args[@]}"
