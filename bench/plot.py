@@ -59,7 +59,7 @@ double_rows = [r for r in rows if r["scalar"] == "double"]
 models = []  # (model, base, dof) in order of size, then name; models only we load (scenes) left out
 for r in sorted(double_rows, key=lambda r: (int(r["dof"]), r["model"], r["base"])):
     key = (r["model"], r["base"], int(r["dof"]))
-    if key not in models and any(p["library"] != "spatial_dynamics" and (p["model"], p["base"]) == key[:2]
+    if key not in models and any(not p["library"].startswith("spatial_dynamics") and (p["model"], p["base"]) == key[:2]
                                  for p in double_rows):
         models.append(key)
 marker_of = {m: model_markers[i % len(model_markers)] for i, m in enumerate(models)}
