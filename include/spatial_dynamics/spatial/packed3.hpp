@@ -104,13 +104,6 @@ SD_INLINE void load_columns(const Matrix3<double>& M, Packed3& c0, Packed3& c1, 
   c2 = load_after(M.data() + 5);
 }
 
-/// The columns of a column-major 3×3 matrix (nine doubles from E on).
-SD_INLINE void columns(const double* E, Packed3& c0, Packed3& c1, Packed3& c2) {
-  c0 = load3(E);
-  c1 = load3(E + 3);
-  c2 = load3(E + 6);
-}
-
 }  // namespace packed3
 #endif
 

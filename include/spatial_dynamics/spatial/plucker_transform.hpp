@@ -40,7 +40,7 @@ struct PluckerTransform {
     if constexpr (std::is_same<S, double>::value) {
       using namespace packed3;
       Packed3 c0, c1, c2;
-      columns(E.data(), c0, c1, c2);
+      load_columns(E, c0, c1, c2);
       const Packed3 w = load3(m.angular), v = load3(m.linear);
       return {to_vector3(mat_vec(c0, c1, c2, w)), to_vector3(mat_vec(c0, c1, c2, v - cross(load3(r), w)))};
     }
@@ -66,7 +66,7 @@ struct PluckerTransform {
     if constexpr (std::is_same<S, double>::value) {
       using namespace packed3;
       Packed3 c0, c1, c2, t0, t1, t2;
-      columns(E.data(), c0, c1, c2);
+      load_columns(E, c0, c1, c2);
       transpose(c0, c1, c2, t0, t1, t2);
       const Packed3 lin = mat_vec(t0, t1, t2, load3(f.linear));
       return {to_vector3(mat_vec(t0, t1, t2, load3(f.angular)) + cross(load3(r), lin)), to_vector3(lin)};

@@ -50,7 +50,7 @@ struct RigidInertia {
     if constexpr (std::is_same<S, double>::value) {
       using namespace packed3;
       Packed3 I0, I1, I2;
-      columns(rotational_inertia.data(), I0, I1, I2);
+      load_columns(rotational_inertia, I0, I1, I2);
       const Packed3 h = load3(first_moment), w = load3(v.angular), lin = load3(v.linear);
       return {to_vector3(mat_vec(I0, I1, I2, w) + cross(h, lin)), to_vector3(mass * lin - cross(h, w))};
     }

@@ -147,7 +147,7 @@ SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, Matrix3<S>& E, const S
   if constexpr (std::is_same<S, double>::value) {
     using namespace packed3;
     Packed3 c0, c1, c2;
-    columns(E.data(), c0, c1, c2);
+    load_columns(E, c0, c1, c2);
     packed_rotate_about_joint_axis(j, s, c, c0, c1, c2);
     store3(c0, E.data());
     store3(c1, E.data() + 3);
