@@ -70,17 +70,14 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
   }
 }
 
-/// Pass 2 at a joint of n = nv > 1 coordinates (free, planar): U = Iᴬ S (6 × n), D = Sᵀ U
-/// (n × n), u = τ − Sᵀ pᴬ, and the articulated inertia and bias force passed to the parent. Out
-/// of line: a model has one or a few such joints, and the pass's loop stays the 1-DoF code (the
-/// timing with and without this was the same within the machine's noise).
+/// Pass 2's inertia part at a joint of n = nv > 1 coordinates (free, planar): U = Iᴬ S (6 × n),
+/// D⁻¹ = (Sᵀ U)⁻¹ (n × n), and the articulated inertia passed to the parent. Out of line: a model
+/// has one or a few such joints, and the pass's loop stays the 1-DoF code.
 template <class S>
-__attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Data<S>& data, int i,
-                                                       const ConstVectorRef<S>& tau) {
+__attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
   Matrix6<S>& IA = data.IA[i].matrix;
-  const Vector6<S> pA = data.f[i].toVector();
   Matrix6<S>& U = data.U[i];  // columns n.. stay zero
   Matrix6<S> D = Matrix6<S>::Identity();  // D in the top-left block: D⁻¹ there, 1 elsewhere
   S column[6];
@@ -92,15 +89,58 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
   const Eigen::LLT<Matrix6<S>> llt(D);
   if (llt.info() != Eigen::Success) throw_singular_joint(model, i);
   data.D_inv[i] = llt.solve(Matrix6<S>::Identity());
-  body_joint_project(model, data, i, data.f[i], column);
-  for (int k = 0; k < j.nv; ++k) data.u[i][k] = tau[j.idx_v + k] - column[k];
   if (lambda > 0) {
-    const Matrix6<S> UD_inv = U * data.D_inv[i];
-    IA -= UD_inv * U.transpose();                                              // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
-    const Vector6<S> pa = pA + IA * data.c[i].toVector() + UD_inv * data.u[i];  // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
+    IA -= U * data.D_inv[i] * U.transpose();                                   // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
     data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);                 // Iᴬ_λ += Xᵀ Iᵃ X
-    data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));           // pᴬ_λ += Xᵀ pᵃ
   }
+}
+
+/// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X.
+template <class S>
+SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
+  const Joint<S>& j = model.joints[i];
+  const int lambda = model.parent[i];
+  Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place
+  const Vector6<S> U = inertia_times_subspace(j, IA);                         // U = Iᴬ S
+  const S D = joint_project(j, U);                                             // D = Sᵀ U
+  // D is numerically zero when it is below the rounding noise of the block it is taken from:
+  // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
+  // so that the test does not depend on the units (a millimetre robot is not singular).
+  const S scale = one_dof_rotates(j) ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
+                                     : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
+  if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
+  data.U[i].col(0) = U;
+  data.D_inv[i](0, 0) = S(1) / D;
+  if (lambda > 0) {
+    for (int c = 0; c < 6; ++c) IA.col(c) -= U * (U[c] / D);                   // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
+    data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);                 // Iᴬ_λ += Xᵀ Iᵃ X
+  }
+}
+
+/// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
+/// then p_λ += Xᵀ pᵃ with pᵃ = p_i + U D⁻¹ u_i (+ Iᵃ c_i, `inertia_times_bias`, in the ABA; none
+/// when solving M δ = r with the factorisation, aba_refined.hpp). p_i holds pᴬ_i on entry.
+template <class S>
+SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data, int i, const S* tau,
+                                      ForceVector<S>* p, Vector6<S>* u, const Vector6<S>* inertia_times_bias) {
+  const Joint<S>& j = model.joints[i];
+  const int lambda = model.parent[i];
+  ForceVector<S>& pA = p[i];  // turned into pᵃ in place
+  if (j.nv == 1) {
+    u[i][0] = tau[j.idx_v] - along_axis(j, one_dof_rotates(j) ? pA.angular : pA.linear);  // u = τ − Sᵀ pᴬ
+    if (lambda == 0) return;
+    const S scaled = u[i][0] * data.D_inv[i](0, 0);
+    pA.angular += data.U[i].col(0).template head<3>() * scaled;                            // pᵃ = pᴬ + U D⁻¹ u
+    pA.linear += data.U[i].col(0).template tail<3>() * scaled;
+  } else {
+    S column[6];
+    body_joint_project(model, data, i, pA, column);
+    for (int k = 0; k < j.nv; ++k) u[i][k] = tau[j.idx_v + k] - column[k];                // u = τ − Sᵀ pᴬ
+    if (lambda == 0) return;
+    pA = ForceVector<S>(Vector6<S>(pA.toVector() + data.U[i] * (data.D_inv[i] * u[i])));  // pᵃ = pᴬ + U D⁻¹ u
+  }
+  if (inertia_times_bias) pA += ForceVector<S>(*inertia_times_bias);                        //      + Iᵃ c
+  p[lambda] += data.X_up[i].applyInverse(pA);                                               // pᴬ_λ += Xᵀ pᵃ
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
@@ -108,59 +148,52 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
 template <class S>
 SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau_in,
                                 bool split_gravity) {
-  const ConstVectorRef<S> tau = split_gravity ? ConstVectorRef<S>(data.tau_less_gravity) : tau_in;
+  const S* tau = split_gravity ? data.tau_less_gravity.data() : tau_in.data();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    const Joint<S>& j = model.joints[i];
-    const int lambda = model.parent[i];
     if (split_gravity) split_gravity_inward(model, data, i, tau_in);            // τ − τ_g at joint i
-    Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place below
-    const Vector6<S> pA = data.f[i].toVector();
-    if (j.nv == 1) {
-      const Vector6<S> U = inertia_times_subspace(j, IA);                       // U = Iᴬ S
-      const S D = joint_project(j, U);                                           // D = Sᵀ U
-      // D is numerically zero when it is below the rounding noise of the block it is taken from:
-      // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
-      // so that the test does not depend on the units (a millimetre robot is not singular).
-      const S scale = one_dof_rotates(j) ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
-                                         : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
-      if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
-      const S u = tau[j.idx_v] - joint_project(j, pA);                           // u = τ − Sᵀ pᴬ
-      data.U[i].col(0) = U;
-      data.D_inv[i](0, 0) = S(1) / D;
-      data.u[i][0] = u;
-      if (lambda > 0) {
-        for (int c = 0; c < 6; ++c) IA.col(c) -= U * (U[c] / D);                 // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
-        const Vector6<S> pa = pA + IA * data.c[i].toVector() + U * (u / D);     // pᵃ = pᴬ + Iᵃ c + U D⁻¹ u
-        data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);               // Iᴬ_λ += Xᵀ Iᵃ X
-        data.f[lambda] += data.X_up[i].applyInverse(ForceVector<S>(pa));         // pᴬ_λ += Xᵀ pᵃ
-      }
+    if (model.joints[i].nv == 1) one_dof_inertia_step(model, data, i);
+    else multi_dof_inertia_step(model, data, i);
+    if (model.parent[i] == 0) {
+      articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), static_cast<const Vector6<S>*>(nullptr));
     } else {
-      multi_dof_inertia_step(model, data, i, tau);
+      const Vector6<S> Ia_c = data.IA[i].matrix * data.c[i].toVector();
+      articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), &Ia_c);
     }
   }
 }
 
-/// Pass 3 (outward): accelerations into data.qdd; gravity as a_0 = −a_g unless it was split off.
+/// Pass 3 (outward) on the factorisation in data, from a[0]: a'_i = X a_λ + c_i,
+/// q̈_i = D⁻¹(u_i − Uᵀ a'_i), a_i = a'_i + S q̈_i. `c` is the ABA's velocity-product
+/// accelerations; none (nullptr) when solving M δ = r with the factorisation.
 template <class S>
-SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data, bool split_gravity) {
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), split_gravity ? Vector3<S>::Zero() : Vector3<S>(-model.gravity));
+SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S>& data, const MotionVector<S>* c,
+                                             const Vector6<S>* u, MotionVector<S>* a, S* qdd) {
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const int lambda = model.parent[i];
-    const MotionVector<S> a_prime = lambda == 0  // X a_0 = (0 ; E a_0) for a_0 = (0 ; −a_g)
-                                        ? data.X_up[i].applyToLinear(data.a[0].linear) + data.c[i]
-                                        : data.X_up[i].apply(data.a[lambda]) + data.c[i];
-    const Vector6<S> ap = a_prime.toVector();
+    MotionVector<S>& a_i = a[i];
+    a_i = lambda == 0 ? data.X_up[i].applyToLinear(a[0].linear)                   // X a_0 = (0 ; E a_0)
+                      : data.X_up[i].apply(a[lambda]);                             // a' = X a_λ
+    if (c) a_i += c[i];                                                            //      + c
     if (j.nv == 1) {
-      const S qdd = data.D_inv[i](0, 0) * (data.u[i][0] - data.U[i].col(0).dot(ap));  // q̈ = D⁻¹(u − Uᵀ a')
-      data.qdd[j.idx_v] = qdd;
-      data.a[i] = a_prime + one_dof_motion(j, qdd);                                    // a_i = a' + S q̈
+      const auto U = data.U[i].col(0);
+      const S qdd_i = data.D_inv[i](0, 0) *
+                      (u[i][0] - (U.template head<3>().dot(a_i.angular) + U.template tail<3>().dot(a_i.linear)));  // q̈ = D⁻¹(u − Uᵀ a')
+      qdd[j.idx_v] = qdd_i;
+      add_one_dof_motion(j, qdd_i, a_i);                                           // a = a' + S q̈
     } else {
-      const Vector6<S> qdd = data.D_inv[i] * (data.u[i] - data.U[i].transpose() * ap);  // q̈ = D⁻¹(u − Uᵀ a'), zero past nv
-      data.qdd.segment(j.idx_v, j.nv) = qdd.head(j.nv);
-      data.a[i] = a_prime + joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd.data());  // a_i = a' + S q̈
+      const Vector6<S> qdd_i = data.D_inv[i] * (u[i] - data.U[i].transpose() * a_i.toVector());  // zero past nv
+      for (int k = 0; k < j.nv; ++k) qdd[j.idx_v + k] = qdd_i[k];
+      a_i += joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd_i.data());  // a = a' + S q̈
     }
   }
+}
+
+/// Pass 3 of the ABA: accelerations into data.qdd; gravity as a_0 = −a_g unless it was split off.
+template <class S>
+SD_INLINE void aba_acceleration_pass(const Model<S>& model, Data<S>& data, bool split_gravity) {
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), split_gravity ? Vector3<S>::Zero() : Vector3<S>(-model.gravity));
+  articulated_acceleration_pass(model, data, data.c.data(), data.u.data(), data.a.data(), data.qdd.data());
 }
 
 template <class S>

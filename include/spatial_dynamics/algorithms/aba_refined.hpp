@@ -124,52 +124,14 @@ void subtract_mass_matrix_product_narrow(const Model<S>& model, const ConstVecto
 }
 
 /// δ = M⁻¹ r by the factorisation the last aba() call left in data (U = Iᴬ S, D⁻¹, X_up):
-/// ABA's passes 2 and 3 with no velocity, no gravity and joint forces r (RBDA Table 7.1). The
-/// 1-DoF bodies work on the 3-vector halves, without assembling 6-vectors.
+/// ABA's passes 2 and 3 (aba.hpp) with no velocity, no gravity and joint forces r (RBDA Table 7.1).
 template <class S, class W>
 void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws) {
-  const int n = model.nbodies();
-  for (int i = 1; i < n; ++i) ws.p[i] = ForceVector<S>::Zero();
-  for (int i = n - 1; i >= 1; --i) {
-    const Joint<S>& j = model.joints[i];
-    const int lambda = model.parent[i];
-    ForceVector<S>& p = ws.p[i];  // pᴬ, turned into pᵃ in place
-    if (j.nv == 1) {
-      const S u = ws.residual[j.idx_v] - detail::along_axis(j, one_dof_rotates(j) ? p.angular : p.linear);  // u = r − Sᵀ pᴬ
-      ws.u[i][0] = u;
-      if (lambda > 0) {
-        const S scaled = u * data.D_inv[i](0, 0);
-        p.angular += data.U[i].col(0).template head<3>() * scaled;                    // pᵃ = pᴬ + U D⁻¹ u
-        p.linear += data.U[i].col(0).template tail<3>() * scaled;
-        ws.p[lambda] += data.X_up[i].applyInverse(p);                                 // pᴬ_λ += Xᵀ pᵃ
-      }
-    } else {
-      S column[6];
-      body_joint_project(model, data, i, p, column);
-      for (int k = 0; k < j.nv; ++k) ws.u[i][k] = ws.residual[j.idx_v + k] - column[k];  // u = r − Sᵀ pᴬ
-      if (lambda > 0) {
-        p = ForceVector<S>(Vector6<S>(p.toVector() + data.U[i] * (data.D_inv[i] * ws.u[i])));  // pᵃ = pᴬ + U D⁻¹ u
-        ws.p[lambda] += data.X_up[i].applyInverse(p);                                 // pᴬ_λ += Xᵀ pᵃ
-      }
-    }
-  }
+  for (int i = 1; i < model.nbodies(); ++i) ws.p[i] = ForceVector<S>::Zero();
+  for (int i = model.nbodies() - 1; i >= 1; --i)
+    articulated_force_step(model, data, i, ws.residual.data(), ws.p.data(), ws.u.data(), static_cast<const Vector6<S>*>(nullptr));
   ws.a[0] = MotionVector<S>::Zero();
-  for (int i = 1; i < n; ++i) {
-    const Joint<S>& j = model.joints[i];
-    MotionVector<S>& a = ws.a[i];
-    a = data.X_up[i].apply(ws.a[model.parent[i]]);                                     // a' = X a_λ
-    if (j.nv == 1) {
-      const auto U = data.U[i].col(0);
-      const S d = data.D_inv[i](0, 0) *
-                  (ws.u[i][0] - (U.template head<3>().dot(a.angular) + U.template tail<3>().dot(a.linear)));  // δ = D⁻¹(u − Uᵀ a')
-      ws.delta[j.idx_v] = d;
-      add_one_dof_motion(j, d, a);                                                     // a = a' + S δ
-    } else {
-      const Vector6<S> d = data.D_inv[i] * (ws.u[i] - data.U[i].transpose() * a.toVector());  // zero past nv
-      ws.delta.segment(j.idx_v, j.nv) = d.head(j.nv);
-      a = a + joint_motion(j, data.joint_sin[i], data.joint_cos[i], d.data());          // a = a' + S δ
-    }
-  }
+  articulated_acceleration_pass(model, data, static_cast<const MotionVector<S>*>(nullptr), ws.u.data(), ws.a.data(), ws.delta.data());
 }
 
 /// Corrections x ← x + M⁻¹ r with residuals in W, from the iterate in ws.x_wide and its
