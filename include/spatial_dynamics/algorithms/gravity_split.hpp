@@ -13,6 +13,7 @@
 // The sums are the RNEA's to the letter, not the shorter form with subtree masses and first
 // moments: that one takes the transforms' rotations for exactly orthogonal, which they are only to
 // double's precision, and on a long chain with general axes the difference outgrows the rounding.
+// The wide 3-vectors and their operations are spatial/wide_vector3.hpp's (packed where the CPU has it).
 #pragma once
 
 #include <type_traits>
@@ -21,6 +22,7 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
@@ -40,25 +42,20 @@ SD_INLINE bool splits_gravity(const Model<S>& model) {
 /// Starts the split: the base's gravity a_g.
 template <class S>
 SD_INLINE void gravity_split_start(const Model<S>& model, Data<S>& data) {
-  for (int k = 0; k < 3; ++k) data.gravity_split[0].gravity[k] = WiderScalar<S>(model.gravity[k]);
+  using Wide = wide3::Form<S>;
+  Wide::store(Wide::from(model.gravity), data.gravity_split[0].gravity);
 }
 
 /// Body i on the way out (after data.X_up[i]): g_i = E_i g_λ and its own gravity force
 /// (g_i × h_i ; −m_i g_i), where the sum over its subtree starts.
 template <class S>
 SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i) {
-  using W = WiderScalar<S>;
-  const Matrix3<S>& E = data.X_up[i].E;
-  const W* g_parent = data.gravity_split[model.parent[i]].gravity;
-  auto& b = data.gravity_split[i];
-  W* g = b.gravity;
-  for (int r = 0; r < 3; ++r) g[r] = E(r, 0) * g_parent[0] + E(r, 1) * g_parent[1] + E(r, 2) * g_parent[2];
-  const Vector3<S>& h = model.inertia[i].first_moment;
-  const S m = model.inertia[i].mass;
-  b.moment[0] = g[1] * h[2] - g[2] * h[1];
-  b.moment[1] = g[2] * h[0] - g[0] * h[2];
-  b.moment[2] = g[0] * h[1] - g[1] * h[0];
-  for (int k = 0; k < 3; ++k) b.force[k] = -(g[k] * m);
+  using Wide = wide3::Form<S>;
+  auto& body = data.gravity_split[i];
+  const typename Wide::Vector g = Wide::rotation(data.X_up[i].E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
+  Wide::store(g, body.gravity);
+  Wide::store(wide3::cross(g, model.inertia[i].first_moment), body.moment);
+  Wide::store(wide3::scale(S(-model.inertia[i].mass), g), body.force);
 }
 
 /// Body i on the way in, its subtree's force complete: τ − Sᵀ f for its joint into
@@ -66,27 +63,31 @@ SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i
 template <class S>
 SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau) {
   using W = WiderScalar<S>;
+  using Wide = wide3::Form<S>;
   const Joint<S>& j = model.joints[i];
-  const auto& b = data.gravity_split[i];
-  const W* n = b.moment;
-  const W* f = b.force;
+  const auto& body = data.gravity_split[i];
+  const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
   const int v = j.idx_v;
   S* out = data.tau_less_gravity.data();
-  W projected[6];
-  joint_project(j, data.joint_sin[i], data.joint_cos[i], n, f, projected);  // Sᵀ f, in W
+  W projected[6];  // Sᵀ f, in W
+  if (j.nv == 1) {  // the axis' dot product with n or f
+    W lanes[3];
+    Wide::lanes(one_dof_rotates(j) ? n : f, lanes);
+    projected[0] = dot_axis(j, lanes);
+  } else {
+    W n_lanes[3], f_lanes[3];
+    Wide::lanes(n, n_lanes);
+    Wide::lanes(f, f_lanes);
+    joint_project(j, data.joint_sin[i], data.joint_cos[i], n_lanes, f_lanes, projected);
+  }
   for (int k = 0; k < j.nv; ++k) out[v + k] = S(W(tau[v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const Matrix3<S>& E = data.X_up[i].E;
-  const Vector3<S>& r = data.X_up[i].r;
-  W Etf[3];
-  for (int c = 0; c < 3; ++c) Etf[c] = E(0, c) * f[0] + E(1, c) * f[1] + E(2, c) * f[2];
-  auto& p = data.gravity_split[lambda];
-  for (int c = 0; c < 3; ++c) p.moment[c] += E(0, c) * n[0] + E(1, c) * n[1] + E(2, c) * n[2];
-  p.moment[0] += r[1] * Etf[2] - r[2] * Etf[1];
-  p.moment[1] += r[2] * Etf[0] - r[0] * Etf[2];
-  p.moment[2] += r[0] * Etf[1] - r[1] * Etf[0];
-  for (int c = 0; c < 3; ++c) p.force[c] += Etf[c];
+  const typename Wide::Rotation Et = Wide::transposed(data.X_up[i].E);
+  const typename Wide::Vector Et_f = Et * f;
+  auto& parent = data.gravity_split[lambda];
+  Wide::store(Wide::load(parent.moment) + (Et * n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
+  Wide::store(Wide::load(parent.force) + Et_f, parent.force);
 }
 
 }  // namespace detail

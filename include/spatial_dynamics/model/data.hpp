@@ -15,6 +15,7 @@
 #include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
+#include "spatial_dynamics/spatial/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 
@@ -49,14 +50,9 @@ struct Data {
   // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
   // subtree rooted at the body; entry 0 holds the base's gravity. Then τ − τ_g(q) rounded to S.
   struct GravitySplitBody {
-    WiderScalar<S> gravity[3], moment[3], force[3];
+    WideVector3Storage<S> gravity, moment, force;
   };
   std::vector<GravitySplitBody> gravity_split;
-  // The same on packed 3-vectors (algorithms/gravity_split_packed.hpp; double only, empty otherwise).
-  struct PackedGravitySplitBody {
-    Packed3Storage gravity_hi, gravity_lo, moment_hi, moment_lo, force_hi, force_lo;
-  };
-  std::vector<PackedGravitySplitBody> packed_gravity_split;
   VectorX<S> tau_less_gravity;
 
   // CRBA.
@@ -110,7 +106,6 @@ struct Data {
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         gravity_split(model.nbodies()),
-        packed_gravity_split(std::is_same<S, double>::value ? model.nbodies() : 0),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),
         packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),

@@ -1,5 +1,5 @@
 // A 3-vector of double-doubles held in two 4-lane registers (hi, lo), for the ABA's gravity split
-// (algorithms/gravity_split_packed.hpp): the error-free transformations of double_double.hpp
+// (spatial/wide_vector3.hpp, for algorithms/gravity_split.hpp): the error-free transformations of double_double.hpp
 // (TwoSum, TwoProduct by a fused multiply-add) applied to three lanes at once. As there, sums are
 // not renormalised; lane 3 is a pad that no operation moves into lanes 0–2.
 #pragma once
