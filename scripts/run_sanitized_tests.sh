@@ -6,7 +6,7 @@
 #       AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, in build-asan/ (default: all)
 #   run_sanitized_tests.sh thread [all|unit|rostest]
 #       ThreadSanitizer, in build-tsan/ (default: all)
-# The build is optimised (-O1 for address, -O2 for thread) with line tables (-g1) and assertions on (Eigen's
+# The build is optimised (-O1 for address, -Og for its unit tests alone, -O2 for thread) with line tables (-g1) and assertions on (Eigen's
 # index and size checks, and _GLIBCXX_ASSERTIONS for the standard containers). Every sanitizer writes its reports into
 # BUILD_DIR/sanitizer_reports/, and each report counts as a failed test (scripts/test_suite.sh):
 # that is how a finding in the node, whose exit code rostest ignores, fails the run.
@@ -19,7 +19,9 @@ source scripts/test_common.sh
 kind="${1:-}"
 selection="${2:-all}"
 # -O1 keeps AddressSanitizer's reports exact; ThreadSanitizer costs 5–15× and gets -O2, so that
-# the node under test still keeps up with the concurrency test's 500 Hz joint-state stream.
+# the node under test still keeps up with the concurrency test's 500 Hz joint-state stream. The
+# unit tests alone have no such deadline and take -Og, which compiles in about 40 % less time than -O1
+# (test_algorithms.cpp: 49 s instead of 86 s) and keeps every check.
 case "$kind" in
   address) sanitizers=address,undefined; build_dir=build-asan; optimisation=-O1 ;;
   thread) sanitizers=thread; build_dir=build-tsan; optimisation=-O2 ;;
@@ -28,7 +30,7 @@ esac
 
 # The unit tests need neither the node nor its integration tests: only they are built then.
 case "$selection" in
-  unit) targets=(unit_tests) ;;
+  unit) targets=(unit_tests); [ "$kind" = address ] && optimisation=-Og ;;
   *) targets=(all tests) ;;
 esac
 
