@@ -25,7 +25,7 @@ bool crba_takes_packed_path(const Model<S>& model, const Data<S>&) {
 #ifdef SD_PACKED3
 
 /// F = Iᶜ_i S_i (eq. 25): (Ī a ; −h × a) for a revolute joint, (h × a ; m a) for a prismatic one.
-SD_INLINE void packed_composite_force(const Joint<double>& j, const Data<double>::PackedCrbaBody& b,
+SD_INLINE void packed_composite_force(const Joint<double>& j, const PackedWorkspace::CrbaBody& b,
                                       packed3::Packed3& n, packed3::Packed3& f) {
   using namespace packed3;
   const Packed3 axis = make(j.axis.x(), j.axis.y(), j.axis.z());
@@ -39,23 +39,23 @@ SD_INLINE void packed_composite_force(const Joint<double>& j, const Data<double>
 }
 
 /// The columns from base coordinates, once the transforms and composite inertias are in
-/// data.packed_crba: the poses ^iX_0 (rows of E_0i = E_i E_0λ, r_0i = r_0λ + E_0λᵀ r_i), each
+/// data.packed.crba: the poses ^iX_0 (rows of E_0i = E_i E_0λ, r_0i = r_0λ + E_0λᵀ r_i), each
 /// origin and axis into the arrays of crba_base_carry.hpp, then per column F in base orientation
 /// about body i's origin, carried to the runs of revolute ancestors L at a time
 /// (M_ji = a_j · (n + f × (p_j − p_i))) and to prismatic ones one by one (M_ji = a_j · f).
 inline void crba_packed_columns_in_base(const Model<double>& model, Data<double>& data) {
   using namespace packed3;
-  Data<double>::PackedCrbaBody* body = data.packed_crba.data();
+  PackedWorkspace::CrbaBody* body = data.packed.crba.data();
   const int nb = model.nbodies();
   const int soa_stride = static_cast<int>(data.base_origin_and_axis.size()) / 6;
   double* soa = data.base_origin_and_axis.data();
   for (int i = 1; i < nb; ++i) {
-    Data<double>::PackedCrbaBody& b = body[i];
+    PackedWorkspace::CrbaBody& b = body[i];
     const Packed3 t0 = load(b.t0), t1 = load(b.t1), t2 = load(b.t2), r = load(b.r);
     Packed3 base_t0 = t0, base_t1 = t1, base_t2 = t2, base_r = r;
     const int lambda = model.parent[i];
     if (lambda > 0) {
-      const Data<double>::PackedCrbaBody& p = body[lambda];
+      const PackedWorkspace::CrbaBody& p = body[lambda];
       const Packed3 p0 = load(p.base_t0), p1 = load(p.base_t1), p2 = load(p.base_t2);
       base_t0 = mat_vec(p0, p1, p2, t0);  // row m of E_i E_0λ = Σ_k E_i(m, k) · row k of E_0λ
       base_t1 = mat_vec(p0, p1, p2, t1);
@@ -77,7 +77,7 @@ inline void crba_packed_columns_in_base(const Model<double>& model, Data<double>
   const Eigen::Index stride = data.M.outerStride();
   for (int i = 1; i < nb; ++i) {
     const Joint<double>& ji = model.joints[i];
-    const Data<double>::PackedCrbaBody& b = body[i];
+    const PackedWorkspace::CrbaBody& b = body[i];
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);
     const Eigen::Index col = ji.idx_v;
@@ -111,7 +111,7 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
   using namespace packed3;
   check_length("q", q.size(), model.nq);
   joint_sines_and_cosines(model, data, q.data());
-  Data<double>::PackedCrbaBody* body = data.packed_crba.data();
+  PackedWorkspace::CrbaBody* body = data.packed.crba.data();
   const int nb = model.nbodies();
   for (int i = 1; i < nb; ++i) {  // Iᶜ_i = I_i
     const RigidInertia<double>& I = model.inertia[i];
@@ -124,7 +124,7 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
     body[i].mass = I.mass;
   }
   for (int i = nb - 1; i >= 1; --i) {
-    Data<double>::PackedCrbaBody& b = body[i];
+    PackedWorkspace::CrbaBody& b = body[i];
     Packed3 c0, c1, c2, t0, t1, t2, r, axis;
     packed_up_transform(model, data, i, q.data(), c0, c1, c2, t0, t1, t2, r, axis);  // ^iX_λ
     store(t0, b.t0);
@@ -143,7 +143,7 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
     const double diagonal = rr[0] + rr[1] + rr[2];  // m r·r + 2 h'·r
     const Packed3 columns[3] = {mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c0)), mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c1)),
                                 mat_vec(t0, t1, t2, mat_vec(I0, I1, I2, c2))};
-    Data<double>::PackedCrbaBody& p = body[lambda];
+    PackedWorkspace::CrbaBody& p = body[lambda];
     store(load(p.I0) + (columns[0] - r * h_rot[0] - h_shifted * r[0] + make(diagonal, 0, 0)), p.I0);
     store(load(p.I1) + (columns[1] - r * h_rot[1] - h_shifted * r[1] + make(0, diagonal, 0)), p.I1);
     store(load(p.I2) + (columns[2] - r * h_rot[2] - h_shifted * r[2] + make(0, 0, diagonal)), p.I2);
@@ -160,13 +160,13 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
   const Joint<double>* joints = model.joints.data();
   for (int i = 1; i < nb; ++i) {
     const Joint<double>& ji = joints[i];
-    const Data<double>::PackedCrbaBody& b = body[i];
+    const PackedWorkspace::CrbaBody& b = body[i];
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);  // F = Iᶜ_i S_i
     const Eigen::Index col = ji.idx_v;
     M[col + col * stride] = packed_along_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
     for (int j = i, lambda = parent[i]; lambda > 0; j = lambda, lambda = parent[j]) {
-      const Data<double>::PackedCrbaBody& x = body[j];  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
+      const PackedWorkspace::CrbaBody& x = body[j];  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
       const Packed3 t0 = load(x.t0), t1 = load(x.t1), t2 = load(x.t2);
       f = mat_vec(t0, t1, t2, f);
       n = mat_vec(t0, t1, t2, n) + cross(load(x.r), f);

@@ -75,7 +75,7 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
   check_length("velocity", qd.size(), model.nv);
   check_length("acceleration", qdd.size(), model.nv);
   joint_sines_and_cosines(model, data, q.data());
-  Data<double>::PackedRneaBody* body = data.packed_rnea.data();
+  PackedWorkspace::RneaBody* body = data.packed.rnea.data();
   const Packed3 zero = splat(0);
   store(zero, body[0].w);
   store(zero, body[0].v);
@@ -84,8 +84,8 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
   const int nb = model.nbodies();
   for (int i = 1; i < nb; ++i) {
     const Joint<double>& j = model.joints[i];
-    Data<double>::PackedRneaBody& b = body[i];
-    const Data<double>::PackedRneaBody& p = body[model.parent[i]];
+    PackedWorkspace::RneaBody& b = body[i];
+    const PackedWorkspace::RneaBody& p = body[model.parent[i]];
     Packed3 c0, c1, c2, t0, t1, t2, r, axis;
     packed_up_transform(model, data, i, q.data(), c0, c1, c2, t0, t1, t2, r, axis);
     store(t0, b.t0);
@@ -135,14 +135,14 @@ inline const VectorX<double>& rnea_packed_impl(const Model<double>& model, Data<
   double* tau = data.tau.data();
   for (int i = nb - 1; i >= 1; --i) {
     const Joint<double>& j = model.joints[i];
-    const Data<double>::PackedRneaBody& b = body[i];
+    const PackedWorkspace::RneaBody& b = body[i];
     const Packed3 n = load(b.n), f = load(b.f);
     tau[j.idx_v] = packed_along_axis(j, one_dof_rotates(j) ? n : f);
     const int lambda = model.parent[i];
     if (lambda > 0) {
       const Packed3 t0 = load(b.t0), t1 = load(b.t1), t2 = load(b.t2);
       const Packed3 lin = mat_vec(t0, t1, t2, f);
-      Data<double>::PackedRneaBody& pb = body[lambda];
+      PackedWorkspace::RneaBody& pb = body[lambda];
       store(load(pb.n) + mat_vec(t0, t1, t2, n) + cross(load(b.r), lin), pb.n);
       store(load(pb.f) + lin, pb.f);
     }

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/model/packed_workspace.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/lanes.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 #include "spatial_dynamics/spatial/wide_vector3.hpp"
@@ -34,12 +34,6 @@ struct Data {
   // angle (0 and 1 for other bodies), all computed together before the passes (joint_kernels.hpp).
   std::vector<int> angle_bodies;
   std::vector<S> joint_sin, joint_cos;
-  // The packed RNEA's per-body state (algorithms/rnea_packed.hpp; double only, empty otherwise):
-  // velocity, acceleration, force, the rows of ^iX_λ's rotation and its translation.
-  struct PackedRneaBody {
-    Packed3Storage w, v, aw, al, n, f, t0, t1, t2, r;
-  };
-  std::vector<PackedRneaBody> packed_rnea;
 
   // ABA.
   std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
@@ -56,14 +50,6 @@ struct Data {
   VectorX<S> tau_less_gravity;
 
   // CRBA.
-  // The packed CRBA's per-body state (algorithms/crba_packed.hpp; double only, empty otherwise):
-  // the rows of ^iX_λ's rotation, its translation, the composite inertia, and for the carry in
-  // base coordinates the rows of ^iX_0's rotation and its translation.
-  struct PackedCrbaBody {
-    Packed3Storage t0, t1, t2, r, I0, I1, I2, h, base_t0, base_t1, base_t2, base_r;
-    double mass;
-  };
-  std::vector<PackedCrbaBody> packed_crba;
   std::vector<RigidInertia<S>> Ic;          // composite inertias
   std::vector<Vector3<S>> axis_base;        // each 1-DoF joint's axis in base coordinates
   // The carry in base coordinates over runs of revolute ancestors, L at a time (crba.hpp): each
@@ -77,6 +63,9 @@ struct Data {
   // four or more moving ancestors on average, in runs of two or more, where that is cheaper than
   // one transform per pair.
   bool crba_in_base_coordinates = false;
+
+  // The packed passes' own buffers (model/packed_workspace.hpp; sized for double only).
+  PackedWorkspace packed;
 
   // Results.
   VectorX<S> tau;     // rnea output
@@ -100,18 +89,17 @@ struct Data {
         f(model.nbodies(), ForceVector<S>::Zero()),
         joint_sin(model.nbodies(), S(0)),
         joint_cos(model.nbodies(), S(1)),
-        packed_rnea(std::is_same<S, double>::value ? model.nbodies() : 0),
         IA(model.nbodies()),
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         gravity_split(model.nbodies()),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),
-        packed_crba(std::is_same<S, double>::value ? model.nbodies() : 0),
         Ic(model.nbodies()),
         axis_base(model.nbodies(), Vector3<S>::Zero()),
         base_origin_and_axis(6 * (model.nbodies() + kWidestLanes<S>), S(0)),
         revolute_run_start(model.nbodies(), 0),
+        packed(std::is_same<S, double>::value ? model.nbodies() : 0),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
