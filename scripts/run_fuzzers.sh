@@ -35,7 +35,7 @@ bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dep
 build_dir=build-fuzz
 bash scripts/build.sh -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DSPATIAL_DYNAMICS_FUZZ=ON -DSPATIAL_DYNAMICS_BENCHMARK=OFF \
   -DSPATIAL_DYNAMICS_SANITIZE=address,undefined -DCATKIN_ENABLE_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" "${targets[@]/#/fuzz_}" || fail "building the fuzz targets failed"
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "${targets[@]/#/fuzz_}" || fail "building the fuzz targets failed"
 
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
