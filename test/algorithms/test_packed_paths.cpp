@@ -1,8 +1,9 @@
-// The packed RNEA and CRBA (algorithms/rnea_packed.hpp, crba_packed.hpp) and the batched RNEA's
-// AVX paths (lanes.hpp: 4 double lanes, columns gathered by 4×4 transposes). This target is
-// compiled with -mavx2 -mfma, so rnea() and crba() take the packed paths here, where the other
-// unit tests (portable flags) run the scalar code. Oracles: the float128 reference of the same model and
-// inputs, and the scalar RNEA (detail::rnea_impl) compiled in the same file.
+// The RNEA on packed 3-vectors (algorithms/vector3_form.hpp), the packed CRBA (crba_packed.hpp)
+// and the batched RNEA's AVX paths (lanes.hpp: 4 double lanes, columns gathered by 4×4
+// transposes). This target is compiled with -mavx2 -mfma, so rnea() and crba() take the packed
+// forms here, where the other unit tests (portable flags) run the scalar code. Oracles: the
+// float128 reference of the same model and inputs, and the same RNEA on Eigen's 3-vectors
+// (vec3::ScalarForm) compiled in the same file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,12 +55,19 @@ const char* const kEveryJointKindUrdf = R"(<robot name='kinds'>
   <joint name='ptilt' type='prismatic'><parent link='l8'/><child link='l9'/><origin xyz='0.02 0 0'/><axis xyz='0.6 0 0.8'/><limit lower='-1' upper='1' effort='100' velocity='1'/></joint>
 </robot>)";
 
+static_assert(std::is_same<sd::vec3::Form<double>, sd::vec3::PackedForm>::value, "double takes the packed form here");
+
+/// The RNEA on Eigen's 3-vectors, in this file's build.
+VectorXd scalar_rnea(const sd::Model<double>& model, sd::Data<double>& data, const VectorXd& q, const VectorXd& qd,
+                     const VectorXd& qdd, const sd::ForceVector<double>* f_ext) {
+  return sd::detail::rnea_with_form<sd::vec3::ScalarForm<double>>(model, data, q, qd, qdd, f_ext, model.gravity);
+}
+
 /// Checks the packed RNEA against the float128 reference and against the scalar RNEA on `states`
 /// random states (with random external forces when `with_external_forces`); returns the largest
 /// relative error against the reference.
 double check_against_references(const sd::Model<double>& model, int states, bool with_external_forces,
                                 double bound, std::mt19937& rng) {
-  EXPECT_TRUE(sd::detail::rnea_takes_packed_path(model));
   sd::Data<double> data(model), scalar_data(model);
   const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
   sd::Data<sd::Quad> ref(ref_model);
@@ -83,8 +91,7 @@ double check_against_references(const sd::Model<double>& model, int states, bool
     EXPECT_LE(error, bound) << "state " << s;
     // The scalar RNEA on the same inputs: both within the bound of the reference, so within
     // twice of each other.
-    const VectorXd tau_scalar =
-        sd::detail::rnea_impl(model, scalar_data, q, qd, qdd, with_external_forces ? f_ext.data() : nullptr);
+    const VectorXd tau_scalar = scalar_rnea(model, scalar_data, q, qd, qdd, with_external_forces ? f_ext.data() : nullptr);
     EXPECT_LE(sd_test::relative_error(tau, tau_scalar), 2 * bound) << "state " << s;
   }
   return worst;
@@ -121,14 +128,14 @@ double check_mass_matrix(const sd::Model<double>& model, int states, double boun
 
 }  // namespace
 
-// Fixed-base models without coupled joints take the packed path; a floating base or a coupled
-// joint keeps the scalar code, which then gives the scalar results bit for bit.
+// The CRBA takes its packed path on fixed-base models without coupled joints and keeps the scalar
+// code otherwise; the RNEA's packed form serves every model, a floating base and a coupled joint
+// (a master's coordinate scaled and accumulated) included, against both oracles.
 TEST(PackedPaths, TakesThePathWhereItApplies) {
   SKIP_WITHOUT_AVX2_FMA();
   for (const std::string& file : sd_test::robot_files()) {
     const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
     const sd::Data<double> data(model);
-    EXPECT_TRUE(sd::detail::rnea_takes_packed_path(model)) << file;
     // The CRBA's packed path carries columns per ancestor, or from base coordinates on trees with
     // 4 or more ancestors per body in runs of 2 or more on average (of these robots, talos).
     EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data)) << file;
@@ -151,17 +158,9 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
   for (const sd::Model<double>& model :
        {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating),
         sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {
-    EXPECT_FALSE(sd::detail::rnea_takes_packed_path(model));
-    sd::Data<double> data(model), scalar_data(model);
+    sd::Data<double> data(model);
     EXPECT_FALSE(sd::detail::crba_takes_packed_path(model, data));
-    for (int s = 0; s < 20; ++s) {
-      const VectorXd q = sd_test::random_configuration(model, rng);
-      const VectorXd qd = sd_test::random_vector(model.nv, rng), qdd = sd_test::random_vector(model.nv, rng);
-      const VectorXd tau = sd::rnea(model, data, q, qd, qdd);
-      const VectorXd tau_scalar =
-          sd::detail::rnea_impl(model, scalar_data, q, qd, qdd, static_cast<const sd::ForceVector<double>*>(nullptr));
-      EXPECT_EQ(tau, tau_scalar);
-    }
+    check_against_references(model, 50, true, 4e-15, rng);
   }
 }
 

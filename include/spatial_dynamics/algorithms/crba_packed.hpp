@@ -1,5 +1,5 @@
 // CRBA (RBDA Table 6.2) on packed 3-vectors (spatial/packed3.hpp), for the models and builds
-// where the packed RNEA applies (rnea_packed.hpp). The columns are carried one force transform per
+// without floating base, coupled joints or multi-DoF joints in the tree. The columns are carried one force transform per
 // ancestor or, with data.crba_in_base_coordinates, from base coordinates (crba_base_carry.hpp).
 // The same formulas as crba.hpp and PluckerTransform::applyInverseAdd; the rounding differs only
 // in the order of fused operations.
@@ -8,7 +8,7 @@
 #include "spatial_dynamics/algorithms/crba_base_carry.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
-#include "spatial_dynamics/algorithms/rnea_packed.hpp"
+#include "spatial_dynamics/algorithms/vector3_form.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/packed3.hpp"
@@ -19,7 +19,13 @@ namespace detail {
 /// Whether crba() takes the packed path for this model and scalar (with either carry).
 template <class S>
 bool crba_takes_packed_path(const Model<S>& model, const Data<S>&) {
-  return rnea_takes_packed_path(model);
+#ifdef SD_PACKED3
+  return std::is_same<S, double>::value && !model.floating_base && !model.has_coupled_joints &&
+         !model.has_multi_dof_tree_joints;  // written for 1-DoF trees
+#else
+  (void)model;
+  return false;
+#endif
 }
 
 #ifdef SD_PACKED3
@@ -81,7 +87,7 @@ inline void crba_packed_columns_in_base(const Model<double>& model, Data<double>
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);
     const Eigen::Index col = ji.idx_v;
-    M[col + col * stride] = packed_along_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
+    M[col + col * stride] = vec3::PackedForm::dot_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
     const Packed3 base_t0 = load(b.base_t0), base_t1 = load(b.base_t1), base_t2 = load(b.base_t2);
     const Packed3 n_base = mat_vec(base_t0, base_t1, base_t2, n), f_base = mat_vec(base_t0, base_t1, base_t2, f);
     const Vector3<double> n3(n_base[0], n_base[1], n_base[2]), f3(f_base[0], f_base[1], f_base[2]);
@@ -125,12 +131,12 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
   }
   for (int i = nb - 1; i >= 1; --i) {
     PackedWorkspace::CrbaBody& b = body[i];
-    Packed3 c0, c1, c2, t0, t1, t2, r, axis;
-    packed_up_transform(model, data, i, q.data(), c0, c1, c2, t0, t1, t2, r, axis);  // ^iX_λ
-    store(t0, b.t0);
-    store(t1, b.t1);
-    store(t2, b.t2);
-    store(r, b.r);
+    vec3::PackedForm::Rotation E;
+    Packed3 r;
+    vec3::PackedForm::up_transform(model, data, i, q.data(), b, E, r);  // ^iX_λ; the rows of E and r into b
+    const Packed3 c0 = E.c0, c1 = E.c1, c2 = E.c2;
+    const vec3::PackedForm::Rotation Et = vec3::PackedForm::transposed_rotation(b);
+    const Packed3 t0 = Et.c0, t1 = Et.c1, t2 = Et.c2;
     const int lambda = model.parent[i];
     if (lambda == 0) continue;
     // Iᶜ_λ += Xᵀ Iᶜ_i X (eq. 26 inverted): h' = Eᵀ h, column c of Eᵀ Ī E = Eᵀ (Ī E_c), then the
@@ -164,14 +170,14 @@ inline const MatrixX<double>& crba_packed_impl(const Model<double>& model, Data<
     Packed3 n, f;
     packed_composite_force(ji, b, n, f);  // F = Iᶜ_i S_i
     const Eigen::Index col = ji.idx_v;
-    M[col + col * stride] = packed_along_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
+    M[col + col * stride] = vec3::PackedForm::dot_axis(ji, one_dof_rotates(ji) ? n : f);  // M_ii = Sᵢᵀ F
     for (int j = i, lambda = parent[i]; lambda > 0; j = lambda, lambda = parent[j]) {
       const PackedWorkspace::CrbaBody& x = body[j];  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
       const Packed3 t0 = load(x.t0), t1 = load(x.t1), t2 = load(x.t2);
       f = mat_vec(t0, t1, t2, f);
       n = mat_vec(t0, t1, t2, n) + cross(load(x.r), f);
       const Joint<double>& jl = joints[lambda];
-      const double m = packed_along_axis(jl, one_dof_rotates(jl) ? n : f);  // M_λi = S_λᵀ F
+      const double m = vec3::PackedForm::dot_axis(jl, one_dof_rotates(jl) ? n : f);  // M_λi = S_λᵀ F
       const Eigen::Index row = jl.idx_v;
       M[row + col * stride] = m;
       M[col + row * stride] = m;

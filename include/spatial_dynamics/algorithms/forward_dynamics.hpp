@@ -20,7 +20,7 @@ const VectorX<S>& crba_forward_dynamics(const Model<S>& model, Data<S>& data, co
                                         const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
                                         const ForceVector<S>* f_ext) {
   check_length("effort", tau.size(), model.nv);
-  rnea_dispatch(model, data, q, qd, data.zero_v, f_ext);  // h = C q̇ + g − Jᵀ f_ext
+  rnea_impl(model, data, q, qd, data.zero_v, f_ext);  // h = C q̇ + g − Jᵀ f_ext
   data.qdd = tau - data.tau;
   data.llt.compute(crba<S>(model, data, q));
   if (data.llt.info() != Eigen::Success)

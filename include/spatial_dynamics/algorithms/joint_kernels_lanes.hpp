@@ -1,7 +1,7 @@
 // Per-joint arithmetic of joint_kernels.hpp over L lanes (spatial/lanes.hpp): X_J(q) X_tree,
-// S q̇, v × S q̇ and Sᵀ f, each lane holding one state. The joint type and axis are the same in
-// every lane, so the dispatch happens once per block of lanes; the arithmetic follows the
-// one-state kernels formula by formula.
+// S q̇ and Sᵀ f, each lane holding one state, and the lanes' form of the RNEA's passes (rnea.hpp).
+// The joint type and axis are the same in every lane, so the dispatch happens once per block of
+// lanes; the arithmetic follows the one-state kernels formula by formula.
 #pragma once
 
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
@@ -155,24 +155,6 @@ SD_LANE_INLINE void add_joint_motion(const Joint<S>& j, const Lanes<S, L>* qd, L
   }
 }
 
-/// v × S q̇   (eq. 17 with the joint's motion; the zero half of S q̇ skipped)
-template <class S, int L>
-SD_LANE_INLINE LaneMotion<S, L> joint_motion_cross(const Joint<S>& j, const LaneMotion<S, L>& v,
-                                                   const Lanes<S, L>* qd) {
-  switch (j.type) {
-    case JointType::Revolute:  // S q̇ = (a q̇; 0): (ω × a q̇ ; v × a q̇)
-      return {detail::cross_with_axis(j, v.angular, qd[0]), detail::cross_with_axis(j, v.linear, qd[0])};
-    case JointType::Prismatic:  // S q̇ = (0; a q̇): (0 ; ω × a q̇)
-      return {LaneVector3<S, L>::Zero(), detail::cross_with_axis(j, v.angular, qd[0])};
-    case JointType::Free: {
-      const LaneMotion<S, L> vJ{{qd[0], qd[1], qd[2]}, {qd[3], qd[4], qd[5]}};
-      return cross(v, vJ);
-    }
-    case JointType::Planar: break;  // rnea_batch leaves planar joints to the one-state RNEA
-  }
-  return LaneMotion<S, L>::Zero();
-}
-
 /// τ = Sᵀ f written to tau[0 .. nv) (lanes of the joint's velocity coordinates).
 template <class S, int L>
 SD_LANE_INLINE void joint_project_lanes(const Joint<S>& j, const LaneForce<S, L>& f, Lanes<S, L>* tau) {
@@ -189,4 +171,83 @@ SD_LANE_INLINE void joint_project_lanes(const Joint<S>& j, const LaneForce<S, L>
   }
 }
 
+namespace vec3 {
+
+/// The RNEA's form on L states (rnea_passes in rnea.hpp, `work` a BatchData<S, L>): each 3-vector
+/// a LaneVector3, each coordinate a Lanes; the model's constants the same in every lane. Models
+/// with coupled joints or planar joints take the one-state forms (rnea_batch.hpp).
+template <class S, int L>
+struct LanesForm {
+  using Scalar = Lanes<S, L>;
+  using Vector = LaneVector3<S, L>;
+  struct Rotation {  // E, kept in the body's storage
+    const LaneMatrix3<S, L>* E;
+  };
+  struct TransposedRotation {
+    const LaneMatrix3<S, L>* E;
+  };
+
+  // Copied lane by lane: a copy of the whole 96-byte struct is compiled to 16-byte moves, which
+  // the next 32-byte loads of the same lanes then wait for (failed store forwarding).
+  static SD_LANE_INLINE Vector load(const Vector& v) { return {v.x, v.y, v.z}; }
+  static SD_LANE_INLINE Vector load(const Vector3<S>& v) { return Vector::Constant(v); }
+  static SD_LANE_INLINE void store(const Vector& x, Vector& out) {
+    out.x = x.x;
+    out.y = x.y;
+    out.z = x.z;
+  }
+  static SD_LANE_INLINE Vector times(const Rotation& R, const Vector& x) { return *R.E * x; }
+  static SD_LANE_INLINE Vector times(const TransposedRotation& R, const Vector& x) { return R.E->transposeTimes(x); }
+  static SD_LANE_INLINE Vector cross(const Vector& a, const Vector& b) { return a.cross(b); }
+  template <class Body>
+  static SD_LANE_INLINE TransposedRotation transposed_rotation(const Body& b) {
+    return {&b.X.E};
+  }
+  template <class Body>
+  static SD_LANE_INLINE Vector translation(const Body& b) {
+    return load(b.X.r);
+  }
+
+  static SD_LANE_INLINE void add_axis(const Joint<S>& j, const Scalar& k, Vector& x) { detail::add_along_axis(j, k, x); }
+  static SD_LANE_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const Scalar& k) {
+    return detail::cross_with_axis(j, x, k);
+  }
+  static SD_LANE_INLINE Scalar dot_axis(const Joint<S>& j, const Vector& x) { return detail::along_axis_lanes(j, x); }
+
+  /// I (ω ; v) = (Ī_O ω + h × v ; m v − h × ω)   (eq. 25)
+  static SD_LANE_INLINE void inertia_times(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n,
+                                           Vector& f) {
+    n = I.rotational_inertia * w + spatial_dynamics::cross(I.first_moment, v);
+    f = Scalar::Constant(I.mass) * v - spatial_dynamics::cross(I.first_moment, w);
+  }
+
+  template <class Work, class Body>
+  static SD_LANE_INLINE void up_transform(const Model<S>& model, Work&, int i, const Scalar* q, Body& b, Rotation& E,
+                                          Vector& r) {
+    joint_up_transform_lanes(model, i, q + model.joints[i].idx_q, b.X);
+    E.E = &b.X.E;
+    r = load(b.X.r);
+  }
+  /// S q̇ and S q̈ (+ c_J = 0) of a free joint.
+  template <class Work>
+  static SD_LANE_INLINE void joint_motion(const Model<S>& model, const Work&, int i, const Scalar* qd,
+                                          const Scalar* qdd, Vector& vw, Vector& vv, Vector& aw, Vector& al) {
+    const Joint<S>& j = model.joints[i];
+    LaneMotion<S, L> vJ = LaneMotion<S, L>::Zero(), aJ = LaneMotion<S, L>::Zero();
+    add_joint_motion(j, qd + j.idx_v, vJ);
+    add_joint_motion(j, qdd + j.idx_v, aJ);
+    vw = vJ.angular;
+    vv = vJ.linear;
+    aw = aJ.angular;
+    al = aJ.linear;
+  }
+  template <class Work>
+  static SD_LANE_INLINE void store_force(const Model<S>& model, const Work&, int i, const Vector& n, const Vector& f,
+                                         Scalar* tau, bool) {
+    const Joint<S>& j = model.joints[i];
+    joint_project_lanes(j, LaneForce<S, L>{n, f}, tau + j.idx_v);
+  }
+};
+
+}  // namespace vec3
 }  // namespace spatial_dynamics

@@ -7,7 +7,7 @@
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
-#include "spatial_dynamics/algorithms/rnea_packed.hpp"
+#include "spatial_dynamics/algorithms/vector3_form.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -15,66 +15,109 @@
 namespace spatial_dynamics {
 namespace detail {
 
-/// The inward pass from the body forces in data.f: τ_i = Sᵢᵀ f_i (summed over a coupled joint's
-/// bodies), f_λ += ^iX_λᵀ f_i.
-template <class S>
-SD_INLINE void rnea_backward_pass(const Model<S>& model, Data<S>& data) {
+/// The RNEA's two passes, τ = ID(q, q̇, q̈, f_ext) under gravity a_g, on the 3-vectors of form F:
+/// one state (vector3_form.hpp, `work` a Data) or L states in lanes (joint_kernels_lanes.hpp,
+/// `work` a BatchData), F::Scalar per coordinate. Per body v, a, f and ^iX_λ in work.rnea; τ is
+/// stored, or accumulated where a coupled joint shares its master's coordinate (τ zeroed first).
+template <class F, class S, class Work>
+SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::Scalar* q,
+                           const typename F::Scalar* qd, const typename F::Scalar* qdd, const ForceVector<S>* f_ext,
+                           const Vector3<S>& gravity, typename F::Scalar* tau) {
+  using V = typename F::Vector;
+  using T = typename F::Scalar;
+  auto* body = work.rnea.data();
+  for (auto* zero : {&body[0].w, &body[0].v, &body[0].aw}) F::store(F::load(Vector3<S>(Vector3<S>::Zero())), *zero);
+  F::store(F::load(Vector3<S>(-gravity)), body[0].al);  // a_0 = −a_g
+  for (int i = 1; i < model.nbodies(); ++i) {
+    const Joint<S>& j = model.joints[i];
+    auto& b = body[i];
+    const auto& p = body[model.parent[i]];
+    typename F::Rotation E;
+    V r;
+    F::up_transform(model, work, i, q, b, E, r);  // ^iX_λ into b, and its E and r
+    // v_i = X v_λ + S q̇, a_i = X a_λ + S q̈ + c_J + v_i × S q̇ with X m = (E ω ; E (v − r × ω)) (eqs. 11, 17)
+    const V parent_w = F::load(p.w), parent_aw = F::load(p.aw);
+    V w = F::times(E, parent_w), v = F::times(E, F::load(p.v) - F::cross(r, parent_w));
+    V aw = F::times(E, parent_aw), al = F::times(E, F::load(p.al) - F::cross(r, parent_aw));
+    if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
+      const S k = coupling_multiplier(j);  // q̇ = k q̇_master
+      const T qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
+      if (one_dof_rotates(j)) {
+        F::add_axis(j, qd_i, w);
+        aw += F::cross_axis(j, w, qd_i);
+        F::add_axis(j, qdd_i, aw);
+        al += F::cross_axis(j, v, qd_i);
+      } else {
+        F::add_axis(j, qd_i, v);
+        al += F::cross_axis(j, w, qd_i);
+        F::add_axis(j, qdd_i, al);
+      }
+    } else {
+      V jw, jv, aJw, aJl;  // S q̇ and S q̈ + c_J
+      F::joint_motion(model, work, i, qd, qdd, jw, jv, aJw, aJl);
+      w += jw;
+      v += jv;
+      aw += aJw + F::cross(w, jw);
+      al += aJl + (F::cross(w, jv) + F::cross(v, jw));
+    }
+    F::store(w, b.w);
+    F::store(v, b.v);
+    F::store(aw, b.aw);
+    F::store(al, b.al);
+    // f_i = I a_i + v_i ×* I v_i (eq. 29), v ×* (n ; f) = (ω × n + v × f ; ω × f) (eq. 18)
+    V n_v, f_v, n, f;
+    F::inertia_times(model.inertia[i], w, v, n_v, f_v);
+    F::inertia_times(model.inertia[i], aw, al, n, f);
+    n += F::cross(w, n_v) + F::cross(v, f_v);
+    f += F::cross(w, f_v);
+    if (f_ext) {
+      n -= F::load(f_ext[i].angular);
+      f -= F::load(f_ext[i].linear);
+    }
+    F::store(n, b.n);
+    F::store(f, b.f);
+  }
+  // τ_i = Sᵢᵀ f_i (summed over a coupled joint's bodies), f_λ += ^iX_λᵀ f_i = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12)
   const bool accumulate = model.has_coupled_joints;
-  if (accumulate) data.tau.setZero();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    store_joint_force(model, data, i, data.f[i], data.tau.data(), accumulate);     // τ_i = Sᵢᵀ f_i
+    const Joint<S>& j = model.joints[i];
+    const auto& b = body[i];
+    const V n = F::load(b.n), f = F::load(b.f);
+    if (j.nv == 1 && !accumulate)
+      tau[j.idx_v] = F::dot_axis(j, one_dof_rotates(j) ? n : f);
+    else
+      F::store_force(model, work, i, n, f, tau, accumulate);
     const int lambda = model.parent[i];
-    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);        // f_λ += Xᵀ f_i
+    if (lambda == 0) continue;
+    const auto Et = F::transposed_rotation(b);
+    const V Et_f = F::times(Et, f);
+    auto& parent = body[lambda];
+    F::store(F::load(parent.n) + (F::times(Et, n) + F::cross(F::translation(b), Et_f)), parent.n);
+    F::store(F::load(parent.f) + Et_f, parent.f);
   }
 }
 
-/// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈).
-template <class S>
-const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
-                            const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
-                            const ForceVector<S>* f_ext, const Vector3<S>& gravity) {
+/// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈) into
+/// data.tau, on the 3-vectors of form F.
+template <class F, class S>
+const VectorX<S>& rnea_with_form(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext,
+                                 const Vector3<S>& gravity) {
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   check_length("acceleration", qdd.size(), model.nv);
   joint_sines_and_cosines(model, data, q.data());
-  data.v[0] = MotionVector<S>::Zero();
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -gravity);  // a_0 = −a_g
-  for (int i = 1; i < model.nbodies(); ++i) {
-    const Joint<S>& j = model.joints[i];
-    const int lambda = model.parent[i];
-    body_up_transform(model, data, i, q.data(), data.X_up[i]);
-    if (j.nv == 1 && lambda == 0) {  // v_0 = 0, a_0 = (0 ; −a_g): v_i = S q̇, v_i × S q̇ = 0, X a_0 = (0 ; E a_0)
-      const S k = coupling_multiplier(j);                                          // q̇ = k q̇_master
-      const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
-      data.v[i] = one_dof_motion(j, qd_i);
-      MotionVector<S>& a = data.a[i];
-      a = data.X_up[i].applyToLinear(data.a[0].linear);
-      add_one_dof_motion(j, qdd_i, a);                                             // a_i = X a_0 + S q̈
-      data.f[i] = model.inertia[i] * a + one_dof_bias_force(j, model.inertia[i], qd_i);  // f_i = I a + v ×* I v
-      if (f_ext) data.f[i] -= f_ext[i];
-      continue;
-    }
-    if (j.nv == 1) {  // S q̇ and S q̈ have one axis: no 6-vector products with zeros
-      const S k = coupling_multiplier(j);
-      const S qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
-      MotionVector<S>& v = data.v[i];
-      MotionVector<S>& a = data.a[i];
-      v = data.X_up[i].apply(data.v[lambda]);
-      add_one_dof_motion(j, qd_i, v);                                              // v_i = X v_λ + S q̇
-      a = data.X_up[i].apply(data.a[lambda]) + cross_one_dof_motion(v, j, qd_i);   // a_i = X a_λ + v_i × S q̇
-      add_one_dof_motion(j, qdd_i, a);                                             //       + S q̈
-    } else {
-      const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data());     // S q̇
-      data.v[i] = data.X_up[i].apply(data.v[lambda]) + vJ;                         // v_i = X v_λ + S q̇
-      data.a[i] = data.X_up[i].apply(data.a[lambda]) + body_joint_motion(model, data, i, qdd.data()) +
-                  body_joint_bias(model, data, i, qd.data()) + cross(data.v[i], vJ);  // a_i = X a_λ + S q̈ + c_J + v_i × S q̇
-    }
-    const ForceVector<S> Iv = model.inertia[i] * data.v[i];
-    data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);               // f_i = I a + v ×* I v (eq. 29)
-    if (f_ext) data.f[i] -= f_ext[i];
-  }
-  rnea_backward_pass(model, data);
+  if (model.has_coupled_joints) data.tau.setZero();
+  rnea_passes<F>(model, data, q.data(), qd.data(), qdd.data(), f_ext, gravity, data.tau.data());
   return data.tau;
+}
+
+/// The RNEA on this build's 3-vectors (packed for double where the CPU has them).
+template <class S>
+const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                            const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext,
+                            const Vector3<S>& gravity) {
+  return rnea_with_form<vec3::Form<S>>(model, data, q, qd, qdd, f_ext, gravity);
 }
 
 template <class S>
@@ -90,21 +133,6 @@ const VectorX<S>& mass_matrix_times(const Model<S>& model, Data<S>& data, const 
   return rnea_impl<S>(model, data, q, data.zero_v, x, nullptr, Vector3<S>(Vector3<S>::Zero()));
 }
 
-/// The packed path (rnea_packed.hpp) where it applies, rnea_impl otherwise.
-template <class S>
-SD_INLINE void rnea_dispatch(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
-                             const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value) {
-    if (rnea_takes_packed_path(model)) {
-      rnea_packed_impl(model, data, q, qd, qdd, f_ext);
-      return;
-    }
-  }
-#endif
-  rnea_impl(model, data, q, qd, qdd, f_ext);
-}
-
 }  // namespace detail
 
 /// Joint forces τ that produce accelerations q̈ at (q, q̇) under gravity. Result in data.tau;
@@ -112,7 +140,7 @@ SD_INLINE void rnea_dispatch(const Model<S>& model, Data<S>& data, const ConstVe
 template <class S>
 const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  detail::rnea_dispatch(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+  detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
   detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
   return data.tau;
 }
@@ -123,7 +151,7 @@ const VectorX<S>& rnea(const Model<S>& model, Data<S>& data, const ConstVectorRe
                        const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
                        const std::vector<ForceVector<S>>& f_ext) {
   detail::check_external_forces(model, f_ext);
-  detail::rnea_dispatch(model, data, q, qd, qdd, f_ext.data());
+  detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
   detail::check_finite_result(model, "inverse dynamics: the joint force", data.tau);
   return data.tau;
 }

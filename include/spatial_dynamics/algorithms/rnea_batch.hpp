@@ -1,11 +1,11 @@
 // Inverse dynamics of many states of one model: τ_k = ID(q_k, q̇_k, q̈_k) for the columns k of a
-// trajectory. The states go through the RNEA of rnea.hpp (RBDA Table 5.1) L at a time, one per
-// lane (spatial/lanes.hpp): every spatial operation acts on all L states at once, which the
-// compiler turns into vector instructions, and the joint dispatch and the loads of the model's
-// constants are shared by the L states. Columns are taken in blocks of L; a last, partial block
-// fills its unused lanes with a copy of its last state and discards their results. Each lane
-// computes what the scalar rnea (rnea_impl) computes for its state, formula by formula (bit for
-// bit where the compiler fuses no multiply-adds).
+// trajectory. The states go through the RNEA's passes of rnea.hpp (RBDA Table 5.1) L at a time,
+// one per lane, on the lanes' form (joint_kernels_lanes.hpp, spatial/lanes.hpp): every operation
+// acts on all L states at once, which the compiler turns into vector instructions, and the joint
+// dispatch and the loads of the model's constants are shared by the L states. Columns are taken in
+// blocks of L; a last, partial block fills its unused lanes with a copy of its last state and
+// discards their results. Each lane computes what the one-state RNEA on Eigen's 3-vectors computes
+// for its state, formula by formula (bit for bit where the compiler fuses no multiply-adds).
 #pragma once
 
 #include <algorithm>
@@ -69,34 +69,6 @@ void gather_lanes(const Model<S>& model, BatchData<S, L>& data, const ConstMatri
   }
 }
 
-/// The RNEA of rnea_impl on the L states in the lanes; τ in data.tau. Models without coupled joints.
-template <class S, int L>
-void rnea_lanes(const Model<S>& model, BatchData<S, L>& data) {
-  data.v[0] = LaneMotion<S, L>::Zero();
-  data.a[0] = {LaneVector3<S, L>::Zero(), LaneVector3<S, L>::Constant(-model.gravity)};  // a_0 = −a_g
-  for (int i = 1; i < model.nbodies(); ++i) {
-    const Joint<S>& j = model.joints[i];
-    const int lambda = model.parent[i];
-    const Lanes<S, L>* qd = &data.qd[j.idx_v];
-    joint_up_transform_lanes(model, i, &data.q[j.idx_q], data.X_up[i]);
-    if (lambda > 0)
-      data.v[i] = data.X_up[i].apply(data.v[lambda]);                      // v_i = X v_λ + S q̇
-    else
-      data.v[i] = LaneMotion<S, L>::Zero();                                //   (v_0 = 0)
-    add_joint_motion(j, qd, data.v[i]);
-    data.a[i] = data.X_up[i].apply(data.a[lambda]);                        // a_i = X a_λ + S q̈ + v_i × S q̇
-    add_joint_motion(j, &data.qdd[j.idx_v], data.a[i]);
-    data.a[i] += joint_motion_cross(j, data.v[i], qd);
-    const LaneForce<S, L> Iv = model.inertia[i] * data.v[i];
-    data.f[i] = model.inertia[i] * data.a[i] + cross(data.v[i], Iv);      // f_i = I a + v ×* I v (eq. 29)
-  }
-  for (int i = model.nbodies() - 1; i >= 1; --i) {
-    joint_project_lanes(model.joints[i], data.f[i], &data.tau[model.joints[i].idx_v]);  // τ_i = Sᵢᵀ f_i
-    const int lambda = model.parent[i];
-    if (lambda > 0) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);           // f_λ += Xᵀ f_i
-  }
-}
-
 /// Whether x[0 .. n) are finite in every lane: Σ 0·x_k is 0 in a lane unless one of its x_k is
 /// infinite or NaN (0·∞ = NaN). One vector operation per coordinate.
 template <class S, int L>
@@ -126,7 +98,7 @@ void check_finite_columns(const Model<S>& model, const MatrixRef<S>& tau, Eigen:
 /// τ(:, k) = ID(q(:, k), q̇(:, k), q̈(:, k)) for every column k: q is nq × N, q̇ and q̈ nv × N, τ
 /// nv × N (sized by the caller; N may be 0). The scalar rnea's formulas for each state: the same
 /// numbers where the compiler fuses no multiply-adds (the portable build), the same to rounding
-/// otherwise and where rnea takes the packed path (rnea_packed.hpp). Errors as rnea's, their
+/// otherwise and where rnea takes the packed form (vector3_form.hpp). Errors as rnea's, their
 /// message starting with "state k: ". No allocation.
 template <class S, int L>
 void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixRef<S>& q, const ConstMatrixRef<S>& qd,
@@ -141,7 +113,7 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
     if (cols != n)
       throw std::invalid_argument(std::string(what) + " has " + std::to_string(cols) + " columns (states); q has " +
                                   std::to_string(n));
-  if (static_cast<int>(data.X_up.size()) != model.nbodies() || static_cast<int>(data.q.size()) != model.nq)
+  if (static_cast<int>(data.rnea.size()) != model.nbodies() || static_cast<int>(data.q.size()) != model.nq)
     throw std::invalid_argument("the batch workspace was made for another model");
 
   if (model.has_coupled_joints || model.has_multi_dof_tree_joints) {
@@ -162,7 +134,9 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
   for (Eigen::Index c0 = 0; c0 < n; c0 += L) {
     const int count = static_cast<int>(std::min<Eigen::Index>(L, n - c0));
     detail::gather_lanes(model, data, q, qd, qdd, c0, count);
-    detail::rnea_lanes(model, data);
+    detail::rnea_passes<vec3::LanesForm<S, L>>(model, data, data.q.data(), data.qd.data(), data.qdd.data(),
+                                               static_cast<const ForceVector<S>*>(nullptr), model.gravity,
+                                               data.tau.data());
     for (int k = 0; k < model.nv; ++k)
       for (int l = 0; l < count; ++l) tau(k, c0 + l) = data.tau[k][l];
     if (!detail::lanes_all_finite(data.tau.data(), model.nv)) detail::check_finite_columns(model, tau, c0, count);

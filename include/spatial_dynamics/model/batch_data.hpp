@@ -17,10 +17,12 @@ struct BatchData {
   static_assert(L >= 1, "a batch has at least one lane");
   static constexpr int lanes = L;
 
-  // Per body, L states each.
-  std::vector<LaneTransform<S, L>> X_up;  // ^iX_λ(i)
-  std::vector<LaneMotion<S, L>> v, a;     // body velocities and accelerations
-  std::vector<LaneForce<S, L>> f;         // body forces
+  // Per body, L states each, as Data::RneaBody: v = (w ; v), a = (aw ; al), f = (n ; f) and ^iX_λ.
+  struct RneaBody {
+    LaneVector3<S, L> w, v, aw, al, n, f;
+    LaneTransform<S, L> X;
+  };
+  std::vector<RneaBody> rnea;
 
   // The block's inputs and result, per coordinate.
   std::vector<Lanes<S, L>> q, qd, qdd, tau;
@@ -28,10 +30,7 @@ struct BatchData {
   Data<S> single;  // one state at a time (models with coupled mimic joints, planar or floating joints in the tree)
 
   explicit BatchData(const Model<S>& model)
-      : X_up(model.nbodies()),
-        v(model.nbodies(), LaneMotion<S, L>::Zero()),
-        a(model.nbodies(), LaneMotion<S, L>::Zero()),
-        f(model.nbodies()),
+      : rnea(model.nbodies()),
         q(model.nq, Lanes<S, L>::Zero()),
         qd(model.nv, Lanes<S, L>::Zero()),
         qdd(model.nv, Lanes<S, L>::Zero()),

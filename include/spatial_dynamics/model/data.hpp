@@ -35,6 +35,13 @@ struct Data {
   std::vector<int> angle_bodies;
   std::vector<S> joint_sin, joint_cos;
 
+  // RNEA (rnea.hpp), per body in the layout its 3-vectors load fastest (packed for double):
+  // v = (w ; v), a = (aw ; al), f = (n ; f) and the rows t0..t2 of ^iX_λ's E, and its r.
+  struct RneaBody {
+    Vector3Storage<S> w, v, aw, al, n, f, t0, t1, t2, r;
+  };
+  std::vector<RneaBody> rnea;
+
   // ABA.
   std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
   std::vector<Matrix6<S>> U;                // Iᴬ S (first nv columns used)
@@ -89,6 +96,7 @@ struct Data {
         f(model.nbodies(), ForceVector<S>::Zero()),
         joint_sin(model.nbodies(), S(0)),
         joint_cos(model.nbodies(), S(1)),
+        rnea(model.nbodies()),
         IA(model.nbodies()),
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),

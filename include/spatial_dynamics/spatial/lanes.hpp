@@ -210,12 +210,8 @@ struct LaneVector3 {
 
   SD_LANE_INLINE LaneVector3 operator+(const LaneVector3& o) const { return {x + o.x, y + o.y, z + o.z}; }
   SD_LANE_INLINE LaneVector3 operator-(const LaneVector3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-  SD_LANE_INLINE LaneVector3& operator+=(const LaneVector3& o) {
-    x += o.x;
-    y += o.y;
-    z += o.z;
-    return *this;
-  }
+  SD_LANE_INLINE LaneVector3& operator+=(const LaneVector3& o) { return *this = *this + o; }
+  SD_LANE_INLINE LaneVector3& operator-=(const LaneVector3& o) { return *this = *this - o; }
 
   /// a × b, lane by lane.
   SD_LANE_INLINE LaneVector3 cross(const LaneVector3& b) const {

@@ -33,6 +33,19 @@ struct alignas(32) Packed3Storage {
   double lane[4];
 };
 
+/// Memory for a 3-vector in the passes' per-body buffers: Packed3Storage for double (one layout
+/// in every build), Vector3<S> otherwise.
+template <class S>
+struct Vector3StorageOf {
+  using type = Vector3<S>;
+};
+template <>
+struct Vector3StorageOf<double> {
+  using type = Packed3Storage;
+};
+template <class S>
+using Vector3Storage = typename Vector3StorageOf<S>::type;
+
 #ifdef SD_PACKED3
 namespace packed3 {
 
@@ -102,6 +115,22 @@ SD_INLINE void load_columns(const Matrix3<double>& M, Packed3& c0, Packed3& c1, 
   c0 = load(M.data());
   c1 = load(M.data() + 3);
   c2 = load_after(M.data() + 5);
+}
+
+/// A 3×3 matrix by its columns in registers: of M, or of Mᵀ (M's rows).
+struct Columns {
+  Packed3 c0, c1, c2;
+};
+SD_INLINE Columns columns(const Matrix3<double>& M) {
+  Columns C;
+  load_columns(M, C.c0, C.c1, C.c2);
+  return C;
+}
+SD_INLINE Columns transposed_columns(const Matrix3<double>& M) {
+  const Columns C = columns(M);
+  Columns T;
+  transpose(C.c0, C.c1, C.c2, T.c0, T.c1, T.c2);
+  return T;
 }
 
 }  // namespace packed3

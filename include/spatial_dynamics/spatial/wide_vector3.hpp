@@ -61,13 +61,14 @@ SD_INLINE ScalarWideVector3<S> cross(const Vector3<S>& a, const ScalarWideVector
 }
 
 #ifdef SD_PACKED3
-/// The packed form's rotation: its three columns.
-struct PackedWideRotation {
-  packed3::Packed3 c0, c1, c2;
-};
-SD_INLINE packed3::PackedDoubleDouble operator*(const PackedWideRotation& R, const packed3::PackedDoubleDouble& v) {
-  return packed3::mat_vec(R.c0, R.c1, R.c2, v);
+}  // namespace wide3
+namespace packed3 {
+/// The packed form's rotation (its columns) times a double-double 3-vector.
+SD_INLINE PackedDoubleDouble operator*(const Columns& R, const PackedDoubleDouble& v) {
+  return mat_vec(R.c0, R.c1, R.c2, v);
 }
+}  // namespace packed3
+namespace wide3 {
 SD_INLINE packed3::PackedDoubleDouble scale(const double& a, const packed3::PackedDoubleDouble& v) {
   return packed3::scale(packed3::splat(a), v);
 }
@@ -115,18 +116,9 @@ struct Form {
 template <>
 struct Form<double> {
   using Vector = packed3::PackedDoubleDouble;
-  using Rotation = PackedWideRotation;
-  static SD_INLINE Rotation rotation(const Matrix3<double>& E) {
-    Rotation R;
-    packed3::load_columns(E, R.c0, R.c1, R.c2);
-    return R;
-  }
-  static SD_INLINE Rotation transposed(const Matrix3<double>& E) {
-    const Rotation R = rotation(E);
-    Rotation T;
-    packed3::transpose(R.c0, R.c1, R.c2, T.c0, T.c1, T.c2);
-    return T;
-  }
+  using Rotation = packed3::Columns;
+  static SD_INLINE Rotation rotation(const Matrix3<double>& E) { return packed3::columns(E); }
+  static SD_INLINE Rotation transposed(const Matrix3<double>& E) { return packed3::transposed_columns(E); }
   static SD_INLINE Vector from(const Vector3<double>& v) { return {packed3::load3(v), packed3::Packed3{}}; }
   static SD_INLINE Vector load(const WideVector3Storage<double>& s) { return {packed3::load(s.hi), packed3::load(s.lo)}; }
   static SD_INLINE void store(const Vector& v, WideVector3Storage<double>& s) {

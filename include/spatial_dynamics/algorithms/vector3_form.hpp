@@ -1,0 +1,194 @@
+// The 3-vectors a pass over the bodies computes on between its loads and stores, and the few
+// operations it needs on them: sums, cross products, E x and Eᵀ x, a rigid inertia's product
+// (eq. 25) and the products with a joint's axis. Chosen here, in one place: for double where
+// SD_PACKED3 is defined, one packed register per 3-vector (packed3.hpp); otherwise Eigen's
+// 3-vectors, with the axis-aligned shortcuts of model/joints/axis_operations.hpp. A pass written
+// on vec3::Form<S> is one algorithm in every build.
+#pragma once
+
+#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
+
+namespace spatial_dynamics {
+namespace vec3 {
+
+/// What a form on one state (a Data<S>) asks of the joint models (joint_kernels.hpp): S q̇ and
+/// S q̈ + c_J of a joint with several coordinates, and Sᵀ f stored or accumulated (coupled joints) into τ.
+template <class F, class S>
+struct OneStateJointTerms {
+  using Scalar = S;
+  template <class V>
+  static SD_INLINE void joint_motion(const Model<S>& model, const Data<S>& data, int i, const S* qd, const S* qdd,
+                                     V& vw, V& vv, V& aw, V& al) {
+    const MotionVector<S> vJ = body_joint_motion(model, data, i, qd);  // S q̇
+    const MotionVector<S> aJ = body_joint_motion(model, data, i, qdd) + body_joint_bias(model, data, i, qd);  // S q̈ + c_J
+    vw = F::load(vJ.angular);
+    vv = F::load(vJ.linear);
+    aw = F::load(aJ.angular);
+    al = F::load(aJ.linear);
+  }
+  template <class V>
+  static SD_INLINE void store_force(const Model<S>& model, const Data<S>& data, int i, const V& n, const V& f, S* tau,
+                                    bool accumulate) {
+    ForceVector<S> f_i;
+    F::store(n, f_i.angular);
+    F::store(f, f_i.linear);
+    store_joint_force(model, data, i, f_i, tau, accumulate);
+  }
+};
+
+/// Eigen's 3-vectors: every scalar, and double without SD_PACKED3.
+template <class S>
+struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
+  using Vector = Vector3<S>;
+  struct Rotation {  // E, applied as E x or Eᵀ x
+    Matrix3<S> E;
+  };
+
+  static SD_INLINE Vector load(const Vector3<S>& v) { return v; }
+  static SD_INLINE void store(const Vector& x, Vector3<S>& out) { out = x; }
+  static SD_INLINE Vector load(const Packed3Storage& v) { return Vector(v.lane[0], v.lane[1], v.lane[2]); }
+  static SD_INLINE void store(const Vector& x, Packed3Storage& out) {
+    for (int k = 0; k < 3; ++k) out.lane[k] = x[k];
+  }
+  static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return R.E * x; }
+  static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return cross_3d(a, b); }
+  /// Eᵀ from the rows t0..t2 of E kept in a body's storage (the columns of Eᵀ), and r.
+  template <class Body>
+  static SD_INLINE Rotation transposed_rotation(const Body& b) {
+    Rotation T;
+    T.E.col(0) = load(b.t0);
+    T.E.col(1) = load(b.t1);
+    T.E.col(2) = load(b.t2);
+    return T;
+  }
+  template <class Body>
+  static SD_INLINE Vector translation(const Body& b) {
+    return load(b.r);
+  }
+
+  /// x += k a, x × (k a) and a · x for the joint's axis a (one or two components for a coordinate axis).
+  static SD_INLINE void add_axis(const Joint<S>& j, const S& k, Vector& x) { detail::add_along_axis(j, x, k); }
+  static SD_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const S& k) { return detail::cross_axis(j, x, k); }
+  static SD_INLINE S dot_axis(const Joint<S>& j, const Vector& x) { return detail::dot_axis(j, x.data()); }
+
+  /// I (ω ; v) = (Ī_O ω + h × v ; m v − h × ω)   (eq. 25)
+  static SD_INLINE void inertia_times(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {
+    n = I.rotational_inertia * w + cross_3d(I.first_moment, v);
+    f = I.mass * v - cross_3d(I.first_moment, w);
+  }
+
+  /// ^iX_λ(i) (joint_kernels.hpp) into b as E's rows and r, and its E and r.
+  template <class Body>
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
+                                     Vector& r) {
+    PluckerTransform<S>& X = data.X_up[i];
+    body_up_transform(model, data, i, q, X);
+    E.E = X.E;
+    r = X.r;
+    store(X.E.row(0).transpose(), b.t0);
+    store(X.E.row(1).transpose(), b.t1);
+    store(X.E.row(2).transpose(), b.t2);
+    store(r, b.r);
+  }
+};
+
+#ifdef SD_PACKED3
+/// One packed register per 3-vector (double, AVX2 + FMA). Loads and stores move exactly three
+/// doubles, so a later load meets one earlier store of the same size.
+struct PackedForm : OneStateJointTerms<PackedForm, double> {
+  using S = double;
+  using Vector = packed3::Packed3;
+  using Rotation = packed3::Columns;  // E by its columns
+
+  static SD_INLINE Vector load(const Vector3<S>& v) { return packed3::load3(v); }
+  static SD_INLINE void store(const Vector& x, Vector3<S>& out) { packed3::store3(x, out.data()); }
+  static SD_INLINE Vector load(const Packed3Storage& v) { return packed3::load(v); }
+  static SD_INLINE void store(const Vector& x, Packed3Storage& out) { packed3::store(x, out); }
+  static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return packed3::mat_vec(R.c0, R.c1, R.c2, x); }
+  static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return packed3::cross(a, b); }
+  /// Eᵀ by its columns, the rows of E kept in a body's storage; and r.
+  template <class Body>
+  static SD_INLINE Rotation transposed_rotation(const Body& b) {
+    return {load(b.t0), load(b.t1), load(b.t2)};
+  }
+  template <class Body>
+  static SD_INLINE Vector translation(const Body& b) {
+    return load(b.r);
+  }
+
+  static SD_INLINE Vector axis(const Joint<S>& j) { return packed3::make(j.axis.x(), j.axis.y(), j.axis.z()); }
+  static SD_INLINE void add_axis(const Joint<S>& j, const S& k, Vector& x) { x += k * axis(j); }
+  static SD_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const S& k) {
+    return packed3::cross(x, k * axis(j));
+  }
+  /// a · x: one lane for a coordinate axis.
+  static SD_INLINE S dot_axis(const Joint<S>& j, const Vector& x) {
+    switch (j.axis_kind) {
+      case AxisKind::X: return x[0];
+      case AxisKind::Y: return x[1];
+      case AxisKind::Z: return x[2];
+      case AxisKind::General: break;
+    }
+    return j.axis.x() * x[0] + j.axis.y() * x[1] + j.axis.z() * x[2];
+  }
+
+  static SD_INLINE void inertia_times(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {
+    using namespace packed3;
+    Packed3 I0, I1, I2;
+    load_columns(I.rotational_inertia, I0, I1, I2);
+    const Packed3 h = packed3::load(I.first_moment.data());  // lane 3 reads Ī_O(0, 0), inside the struct
+    n = mat_vec(I0, I1, I2, w) + packed3::cross(h, v);
+    f = I.mass * v - packed3::cross(h, w);
+  }
+
+  /// ^iX_λ(i)'s E and r; a 1-DoF joint's in registers (RBDA Table 4.1:
+  /// E = E_J(θ) E_tree for a revolute joint, r = r_tree + E_treeᵀ (q a) for a prismatic one).
+  template <class Body>
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
+                                     Vector& r) {
+    const Joint<S>& j = model.joints[i];
+    if (j.nv != 1) {  // through data.X_up[i]
+      PluckerTransform<S>& X = data.X_up[i];
+      body_up_transform(model, data, i, q, X);
+      E = packed3::columns(X.E);
+      r = packed3::load3(X.r);
+    } else {
+      const PluckerTransform<S>& Xt = model.X_tree[i];
+      E = packed3::columns(Xt.E);
+      r = packed3::load3(Xt.r);
+      if (one_dof_rotates(j)) {
+        detail::packed_rotate_about_joint_axis(j, data.joint_sin[i], data.joint_cos[i], E.c0, E.c1, E.c2);
+      } else {
+        const S position = j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
+        r += times(packed3::transposed_columns(Xt.E), position * axis(j));
+      }
+    }
+    Rotation T;
+    packed3::transpose(E.c0, E.c1, E.c2, T.c0, T.c1, T.c2);
+    store(T.c0, b.t0);
+    store(T.c1, b.t1);
+    store(T.c2, b.t2);
+    store(r, b.r);
+  }
+};
+#endif
+
+/// The choice, for S.
+template <class S>
+struct FormOf {
+  using type = ScalarForm<S>;
+};
+#ifdef SD_PACKED3
+template <>
+struct FormOf<double> {
+  using type = PackedForm;
+};
+#endif
+template <class S>
+using Form = typename FormOf<S>::type;
+
+}  // namespace vec3
+}  // namespace spatial_dynamics
