@@ -139,32 +139,35 @@ SD_LANE_INLINE void joint_up_transform_lanes(const Model<S>& model, int i, const
   }
 }
 
-/// m += S q̇ (or S q̈); `qd` points at the lanes of the joint's first velocity coordinate.
+/// S q̇ (or S q̈) as its angular part w and linear part v; `qd` points at the lanes of the joint's
+/// first velocity coordinate.
 template <class S, int L>
-SD_LANE_INLINE void add_joint_motion(const Joint<S>& j, const Lanes<S, L>* qd, LaneMotion<S, L>& m) {
+SD_LANE_INLINE void joint_motion_lanes(const Joint<S>& j, const Lanes<S, L>* qd, LaneVector3<S, L>& w,
+                                       LaneVector3<S, L>& v) {
+  w = LaneVector3<S, L>::Zero();
+  v = LaneVector3<S, L>::Zero();
   switch (j.type) {
-    case JointType::Revolute: detail::add_along_axis(j, qd[0], m.angular); return;
-    case JointType::Prismatic: detail::add_along_axis(j, qd[0], m.linear); return;
+    case JointType::Revolute: detail::add_along_axis(j, qd[0], w); return;
+    case JointType::Prismatic: detail::add_along_axis(j, qd[0], v); return;
     case JointType::Free:
-      for (int k = 0; k < 3; ++k) {
-        m.angular[k] += qd[k];
-        m.linear[k] += qd[k + 3];
-      }
+      w = {qd[0], qd[1], qd[2]};
+      v = {qd[3], qd[4], qd[5]};
       return;
     case JointType::Planar: return;  // rnea_batch leaves planar joints to the one-state RNEA
   }
 }
 
-/// τ = Sᵀ f written to tau[0 .. nv) (lanes of the joint's velocity coordinates).
+/// τ = Sᵀ (n ; f) written to tau[0 .. nv) (lanes of the joint's velocity coordinates).
 template <class S, int L>
-SD_LANE_INLINE void joint_project_lanes(const Joint<S>& j, const LaneForce<S, L>& f, Lanes<S, L>* tau) {
+SD_LANE_INLINE void joint_project_lanes(const Joint<S>& j, const LaneVector3<S, L>& n, const LaneVector3<S, L>& f,
+                                        Lanes<S, L>* tau) {
   switch (j.type) {
-    case JointType::Revolute: tau[0] = detail::along_axis_lanes(j, f.angular); return;
-    case JointType::Prismatic: tau[0] = detail::along_axis_lanes(j, f.linear); return;
+    case JointType::Revolute: tau[0] = detail::along_axis_lanes(j, n); return;
+    case JointType::Prismatic: tau[0] = detail::along_axis_lanes(j, f); return;
     case JointType::Free:
       for (int k = 0; k < 3; ++k) {
-        tau[k] = f.angular[k];
-        tau[k + 3] = f.linear[k];
+        tau[k] = n[k];
+        tau[k + 3] = f[k];
       }
       return;
     case JointType::Planar: return;  // rnea_batch leaves planar joints to the one-state RNEA
@@ -228,24 +231,19 @@ struct LanesForm {
     E.E = &b.X.E;
     r = load(b.X.r);
   }
-  /// S q̇ and S q̈ (+ c_J = 0) of a free joint.
+  /// S q̇ and S q̈ + c_J of a joint with several coordinates (a free joint: c_J = 0).
   template <class Work>
   static SD_LANE_INLINE void joint_motion(const Model<S>& model, const Work&, int i, const Scalar* qd,
                                           const Scalar* qdd, Vector& vw, Vector& vv, Vector& aw, Vector& al) {
     const Joint<S>& j = model.joints[i];
-    LaneMotion<S, L> vJ = LaneMotion<S, L>::Zero(), aJ = LaneMotion<S, L>::Zero();
-    add_joint_motion(j, qd + j.idx_v, vJ);
-    add_joint_motion(j, qdd + j.idx_v, aJ);
-    vw = vJ.angular;
-    vv = vJ.linear;
-    aw = aJ.angular;
-    al = aJ.linear;
+    joint_motion_lanes(j, qd + j.idx_v, vw, vv);   // S q̇
+    joint_motion_lanes(j, qdd + j.idx_v, aw, al);  // S q̈ (c_J = 0)
   }
   template <class Work>
   static SD_LANE_INLINE void store_force(const Model<S>& model, const Work&, int i, const Vector& n, const Vector& f,
                                          Scalar* tau, bool) {
     const Joint<S>& j = model.joints[i];
-    joint_project_lanes(j, LaneForce<S, L>{n, f}, tau + j.idx_v);
+    joint_project_lanes(j, n, f, tau + j.idx_v);
   }
 };
 

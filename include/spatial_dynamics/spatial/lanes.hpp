@@ -1,11 +1,10 @@
 // The spatial algebra over L lanes: L independent states side by side, each quantity stored as
 // a structure of arrays (one fixed-size Eigen array of L scalars per coordinate), so that every
-// operation below is one vector operation across the lanes. Only what the batched algorithms
-// need: 3-vectors, rotations, motion and force vectors, the transform (E, r) applied as in
-// plucker_transform.hpp (eqs. 11–12), the cross products of cross.hpp (eqs. 17–18) and a rigid
-// inertia that is the same in every lane (eq. 25). Each formula is written in the same order as
-// its one-state counterpart, so a lane gives that counterpart's numbers (bit for bit unless the
-// compiler fuses multiply-adds differently in the two).
+// operation below is one vector operation across the lanes. Only what the batched RNEA's form
+// needs (algorithms/joint_kernels_lanes.hpp): 3-vectors, their cross products, rotations and the
+// transform (E, r). Each formula is written in the same order as its one-state counterpart, so a
+// lane gives that counterpart's numbers (bit for bit unless the compiler fuses multiply-adds
+// differently in the two).
 #pragma once
 
 #include <cstring>
@@ -14,7 +13,6 @@
 #include <Eigen/Core>
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 // The lane operations are tiny and sit in the inner loops: inlined, the lanes stay in registers
 // instead of travelling through memory as returned structs.
@@ -261,66 +259,11 @@ struct LaneMatrix3 {
   }
 };
 
-/// A motion vector (ω; v_O) per lane.
-template <class S, int L>
-struct LaneMotion {
-  LaneVector3<S, L> angular, linear;
-  SD_LANE_INLINE static LaneMotion Zero() { return {LaneVector3<S, L>::Zero(), LaneVector3<S, L>::Zero()}; }
-  SD_LANE_INLINE LaneMotion operator+(const LaneMotion& o) const { return {angular + o.angular, linear + o.linear}; }
-  SD_LANE_INLINE LaneMotion& operator+=(const LaneMotion& o) {
-    angular += o.angular;
-    linear += o.linear;
-    return *this;
-  }
-};
-
-/// A force vector (n_O; f) per lane.
-template <class S, int L>
-struct LaneForce {
-  LaneVector3<S, L> angular, linear;
-  SD_LANE_INLINE LaneForce operator+(const LaneForce& o) const { return {angular + o.angular, linear + o.linear}; }
-  SD_LANE_INLINE LaneForce& operator+=(const LaneForce& o) {
-    angular += o.angular;
-    linear += o.linear;
-    return *this;
-  }
-};
-
 /// ^BX_A per lane, stored as (E, r) like PluckerTransform.
 template <class S, int L>
 struct LaneTransform {
   LaneMatrix3<S, L> E;
   LaneVector3<S, L> r;
-
-  /// X m = (E ω ; E (v − r×ω))   (eq. 11)
-  SD_LANE_INLINE LaneMotion<S, L> apply(const LaneMotion<S, L>& m) const {
-    return {E * m.angular, E * (m.linear - r.cross(m.angular))};
-  }
-  /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)   (eq. 12 inverted)
-  SD_LANE_INLINE LaneForce<S, L> applyInverse(const LaneForce<S, L>& f) const {
-    const LaneVector3<S, L> lin = E.transposeTimes(f.linear);
-    return {E.transposeTimes(f.angular) + r.cross(lin), lin};
-  }
 };
-
-/// v × m   (eq. 17)
-template <class S, int L>
-SD_LANE_INLINE LaneMotion<S, L> cross(const LaneMotion<S, L>& v, const LaneMotion<S, L>& m) {
-  return {v.angular.cross(m.angular), v.angular.cross(m.linear) + v.linear.cross(m.angular)};
-}
-
-/// v ×* f   (eq. 18)
-template <class S, int L>
-SD_LANE_INLINE LaneForce<S, L> cross(const LaneMotion<S, L>& v, const LaneForce<S, L>& f) {
-  return {v.angular.cross(f.angular) + v.linear.cross(f.linear), v.angular.cross(f.linear)};
-}
-
-/// I v = (Ī_O ω + h×v ; m v − h×ω) for an inertia that is the same in every lane   (eq. 25)
-template <class S, int L>
-SD_LANE_INLINE LaneForce<S, L> operator*(const RigidInertia<S>& I, const LaneMotion<S, L>& v) {
-  const LaneVector3<S, L> h_cross_w = cross(I.first_moment, v.angular);
-  return {I.rotational_inertia * v.angular + cross(I.first_moment, v.linear),
-          {I.mass * v.linear.x - h_cross_w.x, I.mass * v.linear.y - h_cross_w.y, I.mass * v.linear.z - h_cross_w.z}};
-}
 
 }  // namespace spatial_dynamics
