@@ -140,14 +140,17 @@ SD_INLINE void packed_rotate_about_joint_axis(const Joint<double>& j, double s, 
 }
 #endif
 
-/// E ← E_J(θ) E for the rotation about the joint's axis (RBDA Table 4.1, revolute).
+/// E = E_J(θ) E_tree for the rotation about the joint's axis (RBDA Table 4.1, revolute). The
+/// packed form reads E_tree, not a fresh copy of it: 32-byte loads of a matrix just written by
+/// smaller stores would wait for them (failed store forwarding).
 template <class S>
-SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, Matrix3<S>& E, const S& s, const S& c) {
+SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, const Matrix3<S>& E_tree, const S& s, const S& c,
+                                       Matrix3<S>& E) {
 #ifdef SD_PACKED3
   if constexpr (std::is_same<S, double>::value) {
     using namespace packed3;
     Packed3 c0, c1, c2;
-    load_columns(E, c0, c1, c2);
+    load_columns(E_tree, c0, c1, c2);
     packed_rotate_about_joint_axis(j, s, c, c0, c1, c2);
     store3(c0, E.data());
     store3(c1, E.data() + 3);
@@ -155,6 +158,7 @@ SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, Matrix3<S>& E, const S
     return;
   }
 #endif
+  E = E_tree;
   switch (j.axis_kind) {
     case AxisKind::X: rotate_rows(E, 1, 2, c, s); return;
     case AxisKind::Y: rotate_rows(E, 2, 0, c, s); return;

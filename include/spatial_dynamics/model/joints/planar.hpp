@@ -24,8 +24,7 @@ struct PlanarJoint {
   /// ^iX_λ = rot(E_J(ψ)) xlt(x e₁ + y e₂) X_tree: E = E_J(ψ) E_tree, r = r_tree + E_treeᵀ (x e₁ + y e₂).
   static SD_INLINE void up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const std::string&, const S* q,
                                      const S& s, const S& c, PluckerTransform<S>& X) {
-    X.E = Xt.E;
-    detail::rotate_about_joint_axis(j, X.E, s, c);
+    detail::rotate_about_joint_axis(j, Xt.E, s, c, X.E);
     X.r = Xt.r + Xt.E.transpose() * Vector3<S>(j.plane_x * q[0] + j.plane_y * q[1]);
   }
   /// ẋ u₁ + ẏ u₂ = (c ẋ + s ẏ) e₁ + (c ẏ − s ẋ) e₂: the translation rate in child coordinates.

@@ -20,8 +20,7 @@ struct RevoluteJoint {
   static SD_INLINE void up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const std::string&, const S*,
                                      const S& s, const S& c, PluckerTransform<S>& X) {
     X.r = Xt.r;
-    X.E = Xt.E;
-    detail::rotate_about_joint_axis(j, X.E, s, c);
+    detail::rotate_about_joint_axis(j, Xt.E, s, c, X.E);
   }
   /// S q̇ = (q̇ a ; 0).
   static SD_INLINE MotionVector<S> motion(const Joint<S>& j, const S&, const S&, const S* qd) {
