@@ -1,4 +1,4 @@
-// The RNEA on packed 3-vectors (algorithms/vector3_form.hpp), the packed CRBA (crba_packed.hpp)
+// The RNEA and the CRBA on packed 3-vectors (algorithms/vector3_form.hpp)
 // and the batched RNEA's AVX paths (lanes.hpp: 4 double lanes, columns gathered by 4×4
 // transposes). This target is compiled with -mavx2 -mfma, so rnea() and crba() take the packed
 // forms here, where the other unit tests (portable flags) run the scalar code. Oracles: the
@@ -97,14 +97,13 @@ double check_against_references(const sd::Model<double>& model, int states, bool
   return worst;
 }
 
-/// Checks the packed CRBA, with both carries (per ancestor, from base coordinates), against the
+/// Checks the CRBA on packed 3-vectors, with both carries (per ancestor, from base coordinates), against the
 /// float128 reference on `states` random states: relative error within `bound`, both triangles
 /// equal, and the entries of joints on different branches exactly 0.
 double check_mass_matrix(const sd::Model<double>& model, int states, double bound, std::mt19937& rng) {
   sd::Data<double> data(model), in_base(model);
   data.crba_in_base_coordinates = false;
   in_base.crba_in_base_coordinates = true;
-  EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data));
   const sd::Model<sd::Quad> ref_model = model.cast<sd::Quad>();
   sd::Data<sd::Quad> ref(ref_model);
   double worst = 0;
@@ -128,17 +127,16 @@ double check_mass_matrix(const sd::Model<double>& model, int states, double boun
 
 }  // namespace
 
-// The CRBA takes its packed path on fixed-base models without coupled joints and keeps the scalar
-// code otherwise; the RNEA's packed form serves every model, a floating base and a coupled joint
-// (a master's coordinate scaled and accumulated) included, against both oracles.
+// The RNEA's and the CRBA's packed forms serve every model, a floating base and a coupled joint
+// (a master's coordinate scaled and accumulated) included, against the float128 reference (and
+// the RNEA against the scalar form).
 TEST(PackedPaths, TakesThePathWhereItApplies) {
   SKIP_WITHOUT_AVX2_FMA();
   for (const std::string& file : sd_test::robot_files()) {
     const sd::Model<double> model = sd::build_model_from_urdf_file(sd_test::robot_path(file));
     const sd::Data<double> data(model);
-    // The CRBA's packed path carries columns per ancestor, or from base coordinates on trees with
-    // 4 or more ancestors per body in runs of 2 or more on average (of these robots, talos).
-    EXPECT_TRUE(sd::detail::crba_takes_packed_path(model, data)) << file;
+    // The CRBA carries columns per ancestor, or from base coordinates on trees with 4 or more
+    // ancestors per body in runs of 2 or more on average (of these robots, talos).
     EXPECT_EQ(data.crba_in_base_coordinates, file == "talos.urdf") << file;
   }
   sd::ModelBuildOptions floating;
@@ -150,7 +148,7 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
       "name='ja' type='continuous'><parent link='base'/><child link='a'/><axis xyz='0 0 1'/></joint><joint name='jb' "
       "type='continuous'><parent link='a'/><child link='b'/><origin xyz='0.3 0 0'/><axis xyz='0 1 0'/><mimic "
       "joint='ja' multiplier='-2.5' offset='0.7'/></joint></robot>";
-  std::mt19937 rng(5);
+  std::mt19937 rng(5), mass_matrix_rng(7);
   std::mt19937 chain_rng(3);
   const sd::Model<double> long_chain =
       sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(30, chain_rng)));
@@ -158,9 +156,8 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
   for (const sd::Model<double>& model :
        {sd::build_model_from_urdf_file(sd_test::robot_path("solo12.urdf"), floating),
         sd::couple_mimic_joints(sd::build_model_from_urdf_string(coupled_urdf))}) {
-    sd::Data<double> data(model);
-    EXPECT_FALSE(sd::detail::crba_takes_packed_path(model, data));
     check_against_references(model, 50, true, 4e-15, rng);
+    EXPECT_LE(check_mass_matrix(model, 25, 4e-15, mass_matrix_rng), 4e-15);
   }
 }
 

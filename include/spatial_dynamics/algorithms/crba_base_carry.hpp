@@ -1,5 +1,5 @@
 // The CRBA's carry of a column to a run of revolute ancestors in base coordinates, several
-// ancestors at once (spatial/lanes.hpp): used by crba.hpp and crba_packed.hpp on deep trees.
+// ancestors at once (spatial/lanes.hpp): used by crba.hpp on deep trees.
 #pragma once
 
 #include <algorithm>

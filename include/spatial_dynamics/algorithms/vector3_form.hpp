@@ -43,7 +43,7 @@ struct OneStateJointTerms {
 template <class S>
 struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   using Vector = Vector3<S>;
-  struct Rotation {  // E, applied as E x or Eᵀ x
+  struct Rotation {  // a 3×3 matrix (a rotation E or Eᵀ, a rotational inertia), applied as E x
     Matrix3<S> E;
   };
 
@@ -55,14 +55,26 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return R.E * x; }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return cross_3d(a, b); }
+  /// The 3×3 matrix with columns c0, c1, c2 (Eᵀ from E's rows, or a symmetric Ī by its columns).
+  template <class Storage>
+  static SD_INLINE Rotation columns(const Storage& c0, const Storage& c1, const Storage& c2) {
+    Rotation R;
+    R.E.col(0) = load(c0);
+    R.E.col(1) = load(c1);
+    R.E.col(2) = load(c2);
+    return R;
+  }
+  static SD_INLINE Vector column(const Rotation& R, int k) { return R.E.col(k); }
+  template <class Storage>
+  static SD_INLINE void store_columns(const Matrix3<S>& M, Storage& c0, Storage& c1, Storage& c2) {
+    store(Vector(M.col(0)), c0);
+    store(Vector(M.col(1)), c1);
+    store(Vector(M.col(2)), c2);
+  }
   /// Eᵀ from the rows t0..t2 of E kept in a body's storage (the columns of Eᵀ), and r.
   template <class Body>
   static SD_INLINE Rotation transposed_rotation(const Body& b) {
-    Rotation T;
-    T.E.col(0) = load(b.t0);
-    T.E.col(1) = load(b.t1);
-    T.E.col(2) = load(b.t2);
-    return T;
+    return columns(b.t0, b.t1, b.t2);
   }
   template <class Body>
   static SD_INLINE Vector translation(const Body& b) {
@@ -73,6 +85,18 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   static SD_INLINE void add_axis(const Joint<S>& j, const S& k, Vector& x) { detail::add_along_axis(j, x, k); }
   static SD_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const S& k) { return detail::cross_axis(j, x, k); }
   static SD_INLINE S dot_axis(const Joint<S>& j, const Vector& x) { return detail::dot_axis(j, x.data()); }
+  /// k a, and R a (a column of R for a coordinate axis).
+  static SD_INLINE Vector axis_times(const Joint<S>& j, const S& k) { return k * j.axis; }
+  static SD_INLINE Vector times_axis(const Rotation& R, const Joint<S>& j) {
+    switch (j.axis_kind) {
+      case AxisKind::X: return R.E.col(0);
+      case AxisKind::Y: return R.E.col(1);
+      case AxisKind::Z: return R.E.col(2);
+      case AxisKind::General: break;
+    }
+    return R.E * j.axis;
+  }
+  static SD_INLINE S dot(const Vector& a, const Vector& b) { return a.dot(b); }
 
   /// I (ω ; v) = (Ī_O ω + h × v ; m v − h × ω)   (eq. 25)
   static SD_INLINE void inertia_times(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {
@@ -109,10 +133,21 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   static SD_INLINE void store(const Vector& x, Packed3Storage& out) { packed3::store(x, out); }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return packed3::mat_vec(R.c0, R.c1, R.c2, x); }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return packed3::cross(a, b); }
+  /// The 3×3 matrix with columns c0, c1, c2 (Eᵀ from E's rows, or a symmetric Ī by its columns).
+  static SD_INLINE Rotation columns(const Packed3Storage& c0, const Packed3Storage& c1, const Packed3Storage& c2) {
+    return {load(c0), load(c1), load(c2)};
+  }
+  static SD_INLINE Vector column(const Rotation& R, int k) { return k == 0 ? R.c0 : k == 1 ? R.c1 : R.c2; }
+  static SD_INLINE void store_columns(const Matrix3<S>& M, Packed3Storage& c0, Packed3Storage& c1, Packed3Storage& c2) {
+    const Rotation C = packed3::columns(M);
+    store(C.c0, c0);
+    store(C.c1, c1);
+    store(C.c2, c2);
+  }
   /// Eᵀ by its columns, the rows of E kept in a body's storage; and r.
   template <class Body>
   static SD_INLINE Rotation transposed_rotation(const Body& b) {
-    return {load(b.t0), load(b.t1), load(b.t2)};
+    return columns(b.t0, b.t1, b.t2);
   }
   template <class Body>
   static SD_INLINE Vector translation(const Body& b) {
@@ -120,6 +155,22 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   }
 
   static SD_INLINE Vector axis(const Joint<S>& j) { return packed3::make(j.axis.x(), j.axis.y(), j.axis.z()); }
+  /// k a, and R a (a column of R for a coordinate axis).
+  static SD_INLINE Vector axis_times(const Joint<S>& j, const S& k) { return k * axis(j); }
+  static SD_INLINE Vector times_axis(const Rotation& R, const Joint<S>& j) {
+    switch (j.axis_kind) {
+      case AxisKind::X: return R.c0;
+      case AxisKind::Y: return R.c1;
+      case AxisKind::Z: return R.c2;
+      case AxisKind::General: break;
+    }
+    return times(R, axis(j));
+  }
+  /// a · b over lanes 0–2.
+  static SD_INLINE S dot(const Vector& a, const Vector& b) {
+    const Vector p = a * b;
+    return p[0] + p[1] + p[2];
+  }
   static SD_INLINE void add_axis(const Joint<S>& j, const S& k, Vector& x) { x += k * axis(j); }
   static SD_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const S& k) {
     return packed3::cross(x, k * axis(j));

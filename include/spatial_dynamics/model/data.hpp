@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/model/packed_workspace.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
@@ -56,9 +56,14 @@ struct Data {
   std::vector<GravitySplitBody> gravity_split;
   VectorX<S> tau_less_gravity;
 
-  // CRBA.
-  std::vector<RigidInertia<S>> Ic;          // composite inertias
-  std::vector<Vector3<S>> axis_base;        // each 1-DoF joint's axis in base coordinates
+  // CRBA (crba.hpp), per body in the layout its 3-vectors load fastest (packed for double): the
+  // rows t0..t2 of ^iX_λ's E and its r; the composite inertia Iᶜ (columns I0..I2 of Ī_O, h = m c,
+  // mass); for the carry in base coordinates the rows of ^iX_0's E and its r.
+  struct CrbaBody {
+    Vector3Storage<S> t0, t1, t2, r, I0, I1, I2, h, base_t0, base_t1, base_t2, base_r;
+    S mass;
+  };
+  std::vector<CrbaBody> crba;
   // The carry in base coordinates over runs of revolute ancestors, L at a time (crba.hpp): each
   // body's origin and axis in base coordinates as six arrays (x, y, z of the origin, then of the
   // axis), each padded so that a block of lanes may read past the last body; and per body the
@@ -70,9 +75,6 @@ struct Data {
   // four or more moving ancestors on average, in runs of two or more, where that is cheaper than
   // one transform per pair.
   bool crba_in_base_coordinates = false;
-
-  // The packed passes' own buffers (model/packed_workspace.hpp; sized for double only).
-  PackedWorkspace packed;
 
   // Results.
   VectorX<S> tau;     // rnea output
@@ -103,11 +105,9 @@ struct Data {
         u(model.nbodies(), Vector6<S>::Zero()),
         gravity_split(model.nbodies()),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),
-        Ic(model.nbodies()),
-        axis_base(model.nbodies(), Vector3<S>::Zero()),
+        crba(model.nbodies()),
         base_origin_and_axis(6 * (model.nbodies() + kWidestLanes<S>), S(0)),
         revolute_run_start(model.nbodies(), 0),
-        packed(std::is_same<S, double>::value ? model.nbodies() : 0),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
