@@ -20,7 +20,7 @@ inline const std::vector<Algorithm>& all_algorithms() {
   return all;
 }
 
-/// The CSV names (lower case, as the issue fixes them).
+/// The CSV names (lower case; scripts and plots read them by these names).
 inline const char* name(Algorithm a) {
   switch (a) {
     case Algorithm::Rnea: return "rnea";

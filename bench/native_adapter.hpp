@@ -1,5 +1,5 @@
 // spatial_dynamics compiled for this machine (-march=native: AVX, FMA), as the peers' figures in
-// the speed issue were: the adapter lives in a shared library of its own, built with
+// the speed targets were: the adapter lives in a shared library of its own, built with
 // -march=native, EIGEN_MAX_ALIGN_BYTES=16 (Eigen's documented switch for ABI compatibility with
 // SSE2 code: the fixed-size types, and so the Model<double> handed in, have the same layout on
 // both sides) and hidden symbols (its algorithm instances are its own, never merged with the

@@ -1,4 +1,4 @@
-// The spatial algebra of the seed text in one include.
+// The spatial algebra of Featherstone 2010 ("A Beginner's Guide to 6-D Vectors") in one include.
 #pragma once
 
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"

@@ -1,6 +1,6 @@
 // The ABA's gravity split (algorithms/gravity_split.hpp) against the float128 reference
 // (reference/: RNEA and ABA on 6×6 matrices): the joint forces it hands the passes, τ − τ_g(q),
-// and the accelerations it reaches on the shared robots, which the anchors bound
+// and the accelerations it reaches on the shared robots, which the anchors bound
 // (Pinocchio's and RBDL's FD, max over their states).
 #include <gtest/gtest.h>
 

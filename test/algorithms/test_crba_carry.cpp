@@ -24,7 +24,7 @@ struct Case {
 };
 
 std::vector<Case> cases() {
-  // The bound for the robots (peers reach 3e-16 to 1e-15); on the long chain rounding
+  // The bound for the robots (peers reach 3e-16 to 1e-15); on the long chain rounding
   // grows with the depth d: 4e-15 · d / 10.
   std::vector<Case> out;
   for (const std::string& file : sd_test::robot_files()) {

@@ -161,7 +161,7 @@ TEST(PackedPaths, TakesThePathWhereItApplies) {
   }
 }
 
-// The shared robots: within the accuracy issue's RNEA bound (4e-15) of the float128 reference on
+// The shared robots: within the RNEA bound (4e-15) of the float128 reference on
 // 300 random states each.
 TEST(PackedPaths, SharedRobotsAgainstTheReference) {
   SKIP_WITHOUT_AVX2_FMA();
@@ -317,7 +317,7 @@ VectorXd tau_less_gravity_in_quad(const sd::Model<double>& model, const sd::Data
 // The ABA's gravity split on packed 3-vectors (spatial/wide_vector3.hpp) against the same sums in
 // float128 from the same transforms: τ − τ_g is formed in double-double and rounded once, so it
 // is within one unit in the last place of the float128 value. And the ABA on this path within the
-// issue's anchors on the shared robots (test_gravity_split.cpp: the build the library dispatches to).
+// anchors on the shared robots (test_gravity_split.cpp: the build the library dispatches to).
 TEST(PackedPaths, GravitySplitWithinAnUlpOfFloat128) {
   SKIP_WITHOUT_AVX2_FMA();
   sd::ModelBuildOptions floating;

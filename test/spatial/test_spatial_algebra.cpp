@@ -1,4 +1,4 @@
-// Unit tests of the spatial algebra against the seed text's identities, 6×6 matrix forms and
+// Unit tests of the spatial algebra against Featherstone 2010's identities, 6×6 matrix forms and
 // 3-D vector formulas computed independently in the tests.
 #include <gtest/gtest.h>
 

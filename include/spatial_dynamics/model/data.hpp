@@ -1,4 +1,4 @@
-// Every buffer the algorithms need, allocated once from a Model (DESIGN.md, layer 2). A Data
+// Every buffer the algorithms need, allocated once from a Model (the model layer: doc/library.md). A Data
 // belongs to one thread; algorithm calls write into it and never allocate.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The immutable kinematic tree (DESIGN.md, layer 2). Body 0 is the fixed base: the URDF root
+// The immutable kinematic tree (the model layer: doc/library.md). Body 0 is the fixed base: the URDF root
 // link (and everything fixed to it) for a fixed-base model, an empty "universe" for a floating
 // one. Bodies 1..N each have one joint connecting them to parent[i] < i, so index order is a
 // topological order. Plain data, like spatial_v2's model struct.

@@ -1,5 +1,5 @@
 // What a scene needs of a robot: the joints to keep, positions for the joints to lock, and
-// the frames that must stay addressable (DESIGN.md, layer 4).
+// the frames that must stay addressable (the reduction layer: doc/library.md).
 #pragma once
 
 #include <map>

@@ -1,4 +1,4 @@
-// The ROS node (DESIGN.md, layer 5): reads robot_description, merges joint_states, serves
+// The ROS node (doc/node.md): reads robot_description, merges joint_states, serves
 // inverse and forward dynamics, the mass matrix and wrench transforms for the whole robot and for
 // configured scenes (reduced models), manages payloads, and publishes computed torques.
 // Message ↔ vector translation only: the arithmetic is the library's.

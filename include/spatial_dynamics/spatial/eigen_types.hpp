@@ -35,7 +35,7 @@ SD_INLINE Vector3<S> cross_3d(const Vector3<S>& a, const Vector3<S>& b) {
   return Vector3<S>(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
 }
 
-/// The 3-D cross-product matrix: skew(a) * b == a.cross(b) (the "a×" of the seed text).
+/// The 3-D cross-product matrix: skew(a) * b == a.cross(b) (the "a×" of Featherstone 2010).
 template <class S>
 Matrix3<S> skew(const Vector3<S>& a) {
   Matrix3<S> m;

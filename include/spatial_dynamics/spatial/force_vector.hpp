@@ -1,5 +1,5 @@
 // Spatial force vector f = (n_O; f) in Plücker coordinates, moment about the frame origin
-// first (seed text, eq. 6). A distinct type from MotionVector.
+// first (Featherstone 2010, eq. 6). A distinct type from MotionVector.
 #pragma once
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
@@ -43,7 +43,7 @@ template <class S>
 ForceVector<S> operator*(const S& k, const ForceVector<S>& f) { return f * k; }
 
 /// Scalar product m · f = ω·n_O + v_O·f: the power delivered by f on a body moving with m
-/// (seed text, eq. 7). Defined only between a motion and a force.
+/// (Featherstone 2010, eq. 7). Defined only between a motion and a force.
 template <class S>
 SD_INLINE S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
   return m.angular.dot(f.angular) + m.linear.dot(f.linear);

@@ -1,5 +1,5 @@
 // Spatial motion vector m = (ω; v_O) in Plücker coordinates, angular part first
-// (seed text, eq. 5). A distinct type from ForceVector so that adding a force to a
+// (Featherstone 2010, eq. 5). A distinct type from ForceVector so that adding a force to a
 // velocity does not compile.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Plücker coordinate transform ^BX_A from frame A to frame B, stored as (E, r) and never as a
-// 6×6 matrix on the hot path (seed text, eqs. 11–12):
+// 6×6 matrix on the hot path (Featherstone 2010, eqs. 11–12):
 //   E  rotates A coordinates into B coordinates,
 //   r  is the position of B's origin relative to A's, in A coordinates.
 //   ^BX_A  = [ E      0 ]        ^BX_A* = [ E   −E r× ]  = (^BX_A)^-T   (eq. 2)

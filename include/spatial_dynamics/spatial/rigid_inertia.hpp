@@ -1,5 +1,5 @@
 // Rigid-body spatial inertia stored as its ten parameters: mass m, first moment of mass
-// h = m·c, and the rotational inertia Ī_O about the frame origin (seed text, eq. 25):
+// h = m·c, and the rotational inertia Ī_O about the frame origin (Featherstone 2010, eq. 25):
 //   I = [ Ī_O   h× ]      Ī_O = Ī_c + m c× c×ᵀ
 //       [ -h×   m1 ]
 #pragma once

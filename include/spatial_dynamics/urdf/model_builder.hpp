@@ -1,4 +1,4 @@
-// URDF → Model (DESIGN.md, layer 4). Fixed joints are merged into composite inertias (eq. 24)
+// URDF → Model (the URDF layer: doc/library.md). Fixed joints are merged into composite inertias (eq. 24)
 // while their child links stay addressable as frames; an optional free root joint makes the
 // model floating-base. Every rejection is a ModelError whose message names the link or joint.
 #pragma once
