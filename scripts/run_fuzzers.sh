@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of fuzz/ with clang, AddressSanitizer and UndefinedBehaviorSanitizer
-# into build-fuzz/, then either fuzzes or replays the corpora.
+# into build/fuzz/, then either fuzzes or replays the corpora.
 #   run_fuzzers.sh [SECONDS] [TARGET ...]
 #       fuzz each target for SECONDS (default 600), one after another on one core (nice -n 19),
 #       starting from its corpus, its seeds and (URDF target) the robots in urdf/; then
 #       merge everything into a minimised fuzz/<target>/corpus/ (libFuzzer -merge=1). Crashing
-#       inputs go to build-fuzz/artifacts/. Prints executions, corpus size and findings per target.
+#       inputs go to build/fuzz/artifacts/. Prints executions, corpus size and findings per target.
 #   run_fuzzers.sh replay [TARGET ...]
 #       run each target once over every file of its corpus and seeds, without mutating (what CI
 #       does); the last line is "N passed, N failed", one test per target.
@@ -32,7 +32,7 @@ for t in "${targets[@]}"; do
 done
 
 bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dependencies failed"
-build_dir=build-fuzz
+build_dir=build/fuzz
 bash scripts/build.sh -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++-14 -DSPATIAL_DYNAMICS_FUZZ=ON -DSPATIAL_DYNAMICS_BENCHMARK=OFF \
   -DSPATIAL_DYNAMICS_SANITIZE=address,undefined -DCATKIN_ENABLE_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "${targets[@]/#/fuzz_}" || fail "building the fuzz targets failed"
@@ -75,7 +75,7 @@ for t in "${targets[@]}"; do
     continue
   fi
 
-  # Fuzz: new inputs go to a scratch corpus; seeds are copied so that nothing outside build-fuzz/ is written.
+  # Fuzz: new inputs go to a scratch corpus; seeds are copied so that nothing outside build/fuzz/ is written.
   scratch="$build_dir/campaign/$t"
   seeds="$build_dir/seeds/$t"
   rm -rf "$scratch" "$seeds"

@@ -3,9 +3,9 @@
 # and the libraries they link; otherwise the libraries, the node, the tools and every test) and
 # runs the tests there; the last line is "N passed, N failed".
 #   run_sanitized_tests.sh address [all|unit|rostest]
-#       AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, in build-asan/ (default: all)
+#       AddressSanitizer + LeakSanitizer + UndefinedBehaviorSanitizer, in build/asan/ (default: all)
 #   run_sanitized_tests.sh thread [all|unit|rostest]
-#       ThreadSanitizer, in build-tsan/ (default: all)
+#       ThreadSanitizer, in build/tsan/ (default: all)
 # The build is optimised (-O1 for address, -Og for its unit tests alone, -O2 for thread) with line tables (-g1) and assertions on (Eigen's
 # index and size checks, and _GLIBCXX_ASSERTIONS for the standard containers). Every sanitizer writes its reports into
 # BUILD_DIR/sanitizer_reports/, and each report counts as a failed test (scripts/test_suite.sh):
@@ -23,8 +23,8 @@ selection="${2:-all}"
 # unit tests alone have no such deadline and take -Og, which compiles in about 40 % less time than -O1
 # (test_algorithms.cpp: 49 s instead of 86 s) and keeps every check.
 case "$kind" in
-  address) sanitizers=address,undefined; build_dir=build-asan; optimisation=-O1 ;;
-  thread) sanitizers=thread; build_dir=build-tsan; optimisation=-O2 ;;
+  address) sanitizers=address,undefined; build_dir=build/asan; optimisation=-O1 ;;
+  thread) sanitizers=thread; build_dir=build/tsan; optimisation=-O2 ;;
   *) fail "usage: run_sanitized_tests.sh address|thread [all|unit|rostest]" ;;
 esac
 
