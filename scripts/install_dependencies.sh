@@ -9,7 +9,7 @@ packages=(
   ros-core-dev libroscpp-dev libroslib-dev librostest-dev python3-rostest
   liburdfdom-dev liburdfdom-headers-dev libconsole-bridge-dev libeigen3-dev libboost-dev
   googletest libgtest-dev
-  liborocos-kdl-dev libkdl-parser-dev
+  liborocos-kdl-dev libkdl-parser-dev libmujoco-dev
   ros-message-generation python3-genpy
   libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "spatial_dynamics/algorithms/aba.hpp"
+#include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/energy.hpp"
 #include "spatial_dynamics/algorithms/forward_dynamics.hpp"

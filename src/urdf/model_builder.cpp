@@ -2,6 +2,7 @@
 
 #include "spatial_dynamics/model/physical_inertia.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -9,6 +10,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 #include <console_bridge/console.h>
@@ -118,11 +120,29 @@ class Builder {
     }
     check_every_link_reached(*root);
     resolve_mimics();
+    model_.reset_actuator_terms();
+    for (const auto& [body, dynamics] : pending_dynamics_) {
+      const Joint<double>& j = model_.joints[body];
+      std::fill_n(model_.damping.begin() + j.idx_v, j.nv, dynamics.damping);
+      std::fill_n(model_.friction.begin() + j.idx_v, j.nv, dynamics.friction);
+    }
     model_.finalize();
     return std::move(model_);
   }
 
  private:
+  /// A moving joint's URDF <dynamics damping friction>, kept for its coordinates (each of them, for
+  /// a joint of several); negative or non-finite values are errors naming the joint.
+  void record_dynamics(const urdf::Joint& uj, int body) {
+    if (!uj.dynamics) return;
+    for (const auto& [what, value] : {std::pair<const char*, double>{"damping", uj.dynamics->damping},
+                                      {"friction", uj.dynamics->friction}})
+      if (!std::isfinite(value) || value < 0)
+        throw ModelError("joint '" + uj.name + "': <dynamics " + what + "> is " + std::to_string(value) +
+                         " (it must be finite and not negative)");
+    pending_dynamics_.push_back({body, *uj.dynamics});
+  }
+
   int add_body(int parent, const std::string& joint_name, const Transform& X_tree, Joint<double> joint) {
     const int body = model_.nbodies();
     if (parent >= 0) {
@@ -185,19 +205,25 @@ class Builder {
         case urdf::Joint::REVOLUTE:
         case urdf::Joint::CONTINUOUS:
         case urdf::Joint::PRISMATIC:
-          visit(*child, add_body(body, joint->name, X_joint_body, movable_joint(*joint)), Transform::Identity());
+          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, movable_joint(*joint)));
           break;
         case urdf::Joint::FLOATING:
           if (joint->mimic) throw ModelError("joint '" + joint->name + "': a floating joint cannot mimic another joint");
-          visit(*child, add_body(body, joint->name, X_joint_body, free_joint()), Transform::Identity());
+          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, free_joint()));
           break;
         case urdf::Joint::PLANAR:
-          visit(*child, add_body(body, joint->name, X_joint_body, planar_joint(*joint)), Transform::Identity());
+          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, planar_joint(*joint)));
           break;
         default:
           throw ModelError("joint '" + joint->name + "': unknown joint type");
       }
     }
+  }
+
+  /// The child link of moving joint `uj`, which made body `body`, and everything below it.
+  void visit_moving(const urdf::Joint& uj, const urdf::Link& child, int body) {
+    record_dynamics(uj, body);
+    visit(child, body, Transform::Identity());
   }
 
   /// A free joint (model/joints/free.hpp): the floating root, or a URDF floating joint.
@@ -277,6 +303,7 @@ class Builder {
   const ModelBuildOptions& options_;
   Model<double> model_;
   std::vector<std::pair<int, std::string>> pending_mimics_;
+  std::vector<std::pair<int, urdf::JointDynamics>> pending_dynamics_;  // body, its joint's <dynamics>
 };
 
 }  // namespace

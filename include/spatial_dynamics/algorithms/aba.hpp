@@ -85,6 +85,7 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
   for (int k = 0; k < j.nv; ++k) {
     body_joint_project(model, data, i, ForceVector<S>(Vector6<S>(U.col(k))), column);
     for (int l = 0; l < j.nv; ++l) D(l, k) = column[l];
+    if (model.has_armature) D(k, k) += model.armature[j.idx_v + k];  // D = Sᵀ U + armature (RBDA §7.3)
   }
   const Eigen::LLT<Matrix6<S>> llt(D);
   if (llt.info() != Eigen::Success) throw_singular_joint(model, i);
@@ -102,7 +103,8 @@ SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i)
   const int lambda = model.parent[i];
   Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place
   const Vector6<S> U = inertia_times_subspace(j, IA);                         // U = Iᴬ S
-  const S D = joint_project(j, U);                                             // D = Sᵀ U
+  const S D = model.has_armature ? joint_project(j, U) + model.armature[j.idx_v]  // D = Sᵀ U + armature (§7.3)
+                                 : joint_project(j, U);                        // D = Sᵀ U
   // D is numerically zero when it is below the rounding noise of the block it is taken from:
   // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
   // so that the test does not depend on the units (a millimetre robot is not singular).

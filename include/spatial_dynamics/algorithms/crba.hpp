@@ -257,6 +257,8 @@ void crba_with_form(const Model<S>& model, Data<S>& data, const ConstVectorRef<S
     mass_matrix_columns<F, true>(model, data);
   else
     mass_matrix_columns<F, false>(model, data);
+  if (model.has_armature)  // M + diag(armature) (RBDA §7.3)
+    for (int k = 0; k < model.nv; ++k) data.M(k, k) += model.armature[k];
 }
 
 }  // namespace detail

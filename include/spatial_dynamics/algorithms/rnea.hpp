@@ -18,7 +18,8 @@ namespace detail {
 /// The RNEA's two passes, τ = ID(q, q̇, q̈, f_ext) under gravity a_g, on the 3-vectors of form F:
 /// one state (vector3_form.hpp, `work` a Data) or L states in lanes (joint_kernels_lanes.hpp,
 /// `work` a BatchData), F::Scalar per coordinate. Per body v, a, f and ^iX_λ in work.rnea; τ is
-/// stored, or accumulated where a coupled joint shares its master's coordinate (τ zeroed first).
+/// stored, or accumulated where a coupled joint shares its master's coordinate (τ zeroed first);
+/// the model's armature adds its rotor inertia.
 template <class F, class S, class Work>
 SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::Scalar* q,
                            const typename F::Scalar* qd, const typename F::Scalar* qdd, const ForceVector<S>* f_ext,
@@ -95,6 +96,8 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     F::store(F::load(parent.n) + (F::times(Et, n) + F::cross(F::translation(b), Et_f)), parent.n);
     F::store(F::load(parent.f) + Et_f, parent.f);
   }
+  if (model.has_armature)  // the rotors' inertia: τ += armature ⊙ q̈ (RBDA §7.3)
+    for (int k = 0; k < model.nv; ++k) tau[k] += model.armature[k] * qdd[k];
 }
 
 /// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈) into

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <Eigen/Cholesky>
-#include <type_traits>
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
@@ -85,6 +84,10 @@ struct Data {
   // Zero inputs for the RNEA special cases (gravity torques, nonlinear effects).
   VectorX<S> zero_v;
 
+  // Actuator dynamics (actuator_dynamics.hpp): damping and friction forces at q̇, with the rotor
+  // inertia's armature ⊙ q̈ the actuators' effort, and τ less the forces for forward dynamics.
+  VectorX<S> actuator_force, actuator_effort, effort_less_actuator_force;
+
   // Cholesky factor for forward dynamics through the mass matrix (sized once).
   Eigen::LLT<MatrixX<S>> llt;
 
@@ -113,6 +116,9 @@ struct Data {
         M(MatrixX<S>::Zero(model.nv, model.nv)),
         J(Matrix6X<S>::Zero(6, model.nv)),
         zero_v(VectorX<S>::Zero(model.nv)),
+        actuator_force(VectorX<S>::Zero(model.nv)),
+        actuator_effort(VectorX<S>::Zero(model.nv)),
+        effort_less_actuator_force(VectorX<S>::Zero(model.nv)),
         llt(model.nv) {
     for (int i = 1; i < model.nbodies(); ++i)
       if (angle_coordinate(model.joints[i]) >= 0) angle_bodies.push_back(i);

@@ -4,9 +4,11 @@
 // topological order. Plain data, like spatial_v2's model struct.
 #pragma once
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "spatial_dynamics/model/frame.hpp"
@@ -40,6 +42,16 @@ struct Model {
   std::vector<Frame<S>> frames;  // every URDF link, in URDF tree order
 
   Vector3<S> gravity = Vector3<S>(S(0), S(0), S(-9.81));  // in base coordinates
+
+  // The actuators, per velocity coordinate (a coupled mimic joint has its master's): armature, the
+  // reflected rotor inertia J_rotor G² (kg m² or kg), part of M in rnea, crba and aba; viscous
+  // damping (N m s/rad or N s/m) and Coulomb friction (N m or N), ramping linearly through zero
+  // below friction_velocity (rad/s or m/s): the joint forces of actuator_forces
+  // (algorithms/actuator_dynamics.hpp). finalize() sizes empty ones to nv: 0, and 1e-3 for the speed.
+  // (std::vector, as every member: a Model may be built in one build of the code and freed in
+  // another, and Eigen's dynamic allocation differs between SSE and AVX builds.)
+  std::vector<S> armature, damping, friction, friction_velocity;
+  bool has_armature = false;  // some armature is not zero (set by finalize())
 
   int nbodies() const { return static_cast<int>(parent.size()); }
 
@@ -83,8 +95,29 @@ struct Model {
     return names;
   }
 
-  /// Rebuilds the name lookups and the derived flags; the model builder calls it once, after
-  /// filling the vectors.
+  /// Sizes the actuator terms for nv coordinates with their defaults (no actuator dynamics).
+  void reset_actuator_terms() {
+    armature.assign(nv, S(0));
+    damping.assign(nv, S(0));
+    friction.assign(nv, S(0));
+    friction_velocity.assign(nv, S(1e-3));
+  }
+
+  /// Body `to`'s joint takes the actuator terms of body `from` of `source`: the same joint in
+  /// another numbering of the coordinates (a reduced or coupled model).
+  void copy_actuator_terms(const Model& source, int from, int to) {
+    const int n = joints[to].nv, a = source.joints[from].idx_v, b = joints[to].idx_v;
+    for (int k = 0; k < n; ++k) {
+      armature[b + k] = source.armature[a + k];
+      damping[b + k] = source.damping[a + k];
+      friction[b + k] = source.friction[a + k];
+      friction_velocity[b + k] = source.friction_velocity[a + k];
+    }
+  }
+
+  /// Rebuilds the name lookups and the derived flags, sizes empty actuator terms and checks them
+  /// (std::invalid_argument naming the coordinate and the term); the model builder calls it once,
+  /// after filling the vectors.
   void finalize() {
     frame_index_.clear();
     joint_index_.clear();
@@ -93,6 +126,30 @@ struct Model {
     has_multi_dof_tree_joints = false;
     for (int i = 1; i < nbodies(); ++i)
       if (joints[i].nv > 1 && !(floating_base && i == 1)) has_multi_dof_tree_joints = true;
+    if (armature.empty() && damping.empty() && friction.empty() && friction_velocity.empty()) reset_actuator_terms();
+    check_actuator_terms();
+    has_armature = false;
+    for (const S& a : armature) has_armature = has_armature || a != S(0);
+  }
+
+  /// Each actuator term sized nv, finite and not negative, each friction_velocity above zero.
+  void check_actuator_terms() const {
+    const std::vector<std::string> names = velocityNames();
+    const std::pair<const char*, const std::vector<S>*> terms[] = {
+        {"armature", &armature}, {"damping", &damping}, {"friction", &friction}, {"friction_velocity", &friction_velocity}};
+    for (const auto& [term, values] : terms) {
+      if (static_cast<int>(values->size()) != nv)
+        throw std::invalid_argument(std::string("the model's ") + term + " has " + std::to_string(values->size()) +
+                                    " entries for " + std::to_string(nv) + " velocity coordinates");
+      using std::isfinite;
+      for (int k = 0; k < nv; ++k) {
+        const S x = (*values)[k];
+        const bool speed = values == &friction_velocity;
+        if (!isfinite(x) || x < S(0) || (speed && !(x > S(0))))
+          throw std::invalid_argument("coordinate '" + (k < static_cast<int>(names.size()) ? names[k] : std::to_string(k)) +
+                                      "': " + term + " must be finite and " + (speed ? "above zero" : "not negative"));
+      }
+    }
   }
 
   /// The same model in another scalar type (e.g. a high-precision reference).
@@ -112,6 +169,10 @@ struct Model {
     m.joint_names = joint_names;
     for (const auto& f : frames) m.frames.push_back(f.template cast<T>());
     m.gravity = gravity.template cast<T>();
+    m.armature.assign(armature.begin(), armature.end());
+    m.damping.assign(damping.begin(), damping.end());
+    m.friction.assign(friction.begin(), friction.end());
+    m.friction_velocity.assign(friction_velocity.begin(), friction_velocity.end());
     m.finalize();
     return m;
   }

@@ -50,6 +50,11 @@ Model<S> couple_mimic_joints(const Model<S>& independent) {
     j.idx_v = coupled.joints[j.mimic.master_body].idx_v;
     coupled.has_coupled_joints = true;
   }
+  // A joint with coordinates of its own keeps its actuators; a coupled one has its master's.
+  independent.check_actuator_terms();
+  coupled.reset_actuator_terms();
+  for (int i = 1; i < n; ++i)
+    if (!coupled.joints[i].coupled) coupled.copy_actuator_terms(independent, i, i);
   coupled.finalize();
   return coupled;
 }

@@ -104,6 +104,11 @@ Model<S> reduce_model(const Model<S>& full, const Scene& scene) {
     reduced.frames.push_back({frame.name, owner[frame.body], frame.X_frame_body * to_owner[frame.body]});
     if (!reduced.frames.back().X_frame_body.allFinite()) throw_too_large(full, frame.body, "frame '" + frame.name + "'");
   }
+  // Kept joints keep their actuators; a locked one's go with its coordinate.
+  full.check_actuator_terms();
+  reduced.reset_actuator_terms();
+  for (int i = 1; i < n; ++i)
+    if (kept[i]) reduced.copy_actuator_terms(full, i, new_index[i]);
   // Mimic records survive when the master is kept.
   for (int i = 1; i < reduced.nbodies(); ++i) {
     MimicRelation<S>& mimic = reduced.joints[i].mimic;

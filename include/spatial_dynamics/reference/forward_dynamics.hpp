@@ -45,7 +45,9 @@ VecX<S> forward_dynamics(const Model<S>& model, const VectorArg<S>& q, const Vec
   for (int i = n - 1; i >= 1; --i) {  // pass 2, inward
     const Joint<S>& j = model.joints[i];
     U[i] = IA[i] * S_[i];                                                      // U_i = Iᴬ_i S_i
-    const MatX<S> D = S_[i].transpose() * U[i];                                // D_i = S_iᵀ U_i
+    MatX<S> D = S_[i].transpose() * U[i];                                      // D_i = S_iᵀ U_i
+    if (static_cast<int>(model.armature.size()) == model.nv)
+      for (int k = 0; k < j.nv; ++k) D(k, k) += model.armature[j.idx_v + k];   //       + armature
     D_inv[i] = D.inverse();
     u[i] = tau.segment(j.idx_v, j.nv) - S_[i].transpose() * pA[i];             // u_i = τ_i − S_iᵀ pᴬ_i
     const int lambda = model.parent[i];

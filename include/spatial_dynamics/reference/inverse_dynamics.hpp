@@ -48,7 +48,10 @@ VecX<S> inverse_dynamics(const Model<S>& model, const VectorArg<S>& q, const Vec
     const int lambda = model.parent[i];
     if (lambda != 0) f[lambda] += X_up[i].transpose() * f[i];                  // f_λ += ^iX_λᵀ f_i
   }
-  return map.reduce(tau_full, model.nv);                                       // τ = Gᵀ τ_full
+  VecX<S> tau = map.reduce(tau_full, model.nv);                               // τ = Gᵀ τ_full
+  if (static_cast<int>(model.armature.size()) == model.nv)
+    for (int k = 0; k < model.nv; ++k) tau[k] += model.armature[k] * qdd[k];  // + armature ⊙ q̈
+  return tau;
 }
 
 /// g(q) = ID(q, 0, 0): the joint forces that hold the robot still under gravity.

@@ -37,7 +37,10 @@ MatX<S> mass_matrix(const Model<S>& model, const VectorArg<S>& q) {
       H.block(oj, oi, nj, ni) = H.block(oi, oj, ni, nj).transpose();          // H_ji = H_ijᵀ
     }
   }
-  return map.reduce(H, model.nv);                                              // M = Gᵀ H G
+  MatX<S> M = map.reduce(H, model.nv);                                        // M = Gᵀ H G
+  if (static_cast<int>(model.armature.size()) == model.nv)
+    for (int k = 0; k < model.nv; ++k) M(k, k) += model.armature[k];           // + diag(armature)
+  return M;
 }
 
 }  // namespace reference
