@@ -66,6 +66,24 @@ void read_scene(const ros::NodeHandle& nh, SceneConfig& config) {
   }
 }
 
+/// ~actuator_model and ~actuators (actuator_parameters.hpp); throws naming a bad ~actuator_model.
+ActuatorSettings read_actuator_settings(const ros::NodeHandle& private_nh) {
+  ActuatorSettings settings;
+  if (private_nh.hasParam("actuator_model")) {
+    std::string value;
+    if (!private_nh.getParam("actuator_model", value))
+      throw std::runtime_error("parameter " + private_nh.resolveName("actuator_model") +
+                               " must be 'rigid_body', 'urdf' or 'parameters'");
+    settings.model = parse_actuator_model(value, private_nh.resolveName("actuator_model"));
+  }
+  settings.actuators_parameter = private_nh.resolveName("actuators");
+  if (private_nh.hasParam("actuators")) private_nh.getParam("actuators", settings.actuators);
+  if (settings.model == ActuatorModel::RigidBody && settings.actuators.valid())
+    ROS_WARN("dynamics: %s is set but %s is 'rigid_body': the answers include no actuator terms",
+             settings.actuators_parameter.c_str(), private_nh.resolveName("actuator_model").c_str());
+  return settings;
+}
+
 /// The build of the compiled algorithms this process runs (simd_backend.hpp), or why there is none
 /// (a bad SPATIAL_DYNAMICS_SIMD, which every algorithm call then reports as well).
 std::string simd_backend_or_error() {
@@ -103,7 +121,8 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
     if (!(relock_tolerance_ >= 0.0))
       throw std::runtime_error("parameter " + private_nh_.resolveName("relock_tolerance") + " must be >= 0");
     install(loadRobot({}));
-    ROS_INFO("dynamics: serving '%s' with %d joints", robot_->robot_name.c_str(), robot_->bare->nv);
+    ROS_INFO("dynamics: serving '%s' with %d joints, actuator model %s", robot_->robot_name.c_str(), robot_->bare->nv,
+             to_string(robot_->actuator_model));
   } catch (const std::exception& e) {
     load_error_ = e.what();
     scenes_.assign(scene_configs_.size(), nullptr);
@@ -193,7 +212,11 @@ std::shared_ptr<const ServedRobot> DynamicsNode::loadRobot(const std::map<std::s
   ModelBuildOptions options;
   options.gravity = read_gravity(private_nh_);
   auto robot = std::make_shared<ServedRobot>();
-  robot->bare = std::make_shared<const Model<double>>(build_model_from_urdf_string(urdf, options));
+  const ActuatorSettings actuators = read_actuator_settings(private_nh_);
+  Model<double> bare = build_model_from_urdf_string(urdf, options);
+  apply_actuator_settings(actuators, coupled_mimic_joints_, bare);
+  robot->actuator_model = actuators.model;
+  robot->bare = std::make_shared<const Model<double>>(std::move(bare));
   robot->full = std::make_shared<const Model<double>>(with_payloads(*robot->bare, payloads));
   // One joint state per coordinate: a joint's name, or <joint>/x, /y, /yaw of a planar joint.
   robot->cache = std::make_shared<JointStateCache>(robot->bare->velocityNames(), max_state_age_, unknown_joints_);
@@ -250,9 +273,17 @@ std::shared_ptr<const ServedScene> DynamicsNode::buildScene(const std::shared_pt
     }
     if (coupled_mimic_joints_) model = couple_mimic_joints(model);
     scene->model = std::make_shared<const Model<double>>(std::move(model));
+    scene->rigid_model = scene->model;
+    if (robot->actuator_model != ActuatorModel::RigidBody) {  // for rigid_body_only
+      Model<double> rigid = *scene->model;
+      rigid.reset_actuator_terms();
+      rigid.finalize();
+      scene->rigid_model = std::make_shared<const Model<double>>(std::move(rigid));
+    }
     scene->decoder = std::make_unique<JointRequestDecoder>(*scene->model, robot->cache->jointNames());
   } catch (const std::exception& e) {
     scene->model.reset();
+    scene->rigid_model.reset();
     scene->error = who + " (" + config.parameter + "): " + e.what();
   }
   return scene;
@@ -537,6 +568,7 @@ void DynamicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status)
   }
   diagnostics_.setHardwareID(robot->robot_name);
   status.add("joints", robot->bare->nv);
+  status.add("actuator model", to_string(robot->actuator_model));
   if (!scene_errors.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, scene_errors);
   else if (!robot->cache->complete())

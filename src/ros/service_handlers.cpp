@@ -127,21 +127,31 @@ Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene) {
 void compute_inverse_dynamics(const ServedScene& scene, Workspace& ws, const InverseDynamics::Request& req,
                               InverseDynamics::Response& res) {
   const bool with_wrenches = decode_dynamics_request(scene, ws, req, "acceleration", req.acceleration);
-  const Model<double>& model = *scene.model;
-  const Eigen::VectorXd& tau = with_wrenches ? rnea(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
-                                             : rnea(model, *ws.data, ws.q, ws.qd, ws.x);
+  const Model<double>& model = model_for(scene, req.rigid_body_only);
+  Data<double>& data = *ws.data;
+  const bool actuated = with_actuators(scene, req.rigid_body_only);
+  const Eigen::VectorXd& tau =
+      actuated ? (with_wrenches ? inverse_dynamics_actuated(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
+                                : inverse_dynamics_actuated(model, data, ws.q, ws.qd, ws.x))
+               : (with_wrenches ? rnea(model, data, ws.q, ws.qd, ws.x, ws.f_ext) : rnea(model, data, ws.q, ws.qd, ws.x));
   check_finite(tau, "effort");
   res.name = scene.decoder->jointNames();
   copy_to(tau, res.effort);
+  if (actuated) copy_to(actuator_effort(model, data, ws.qd, ws.x), res.actuator_effort);
   res.message = request_notes(scene, ws, req.velocity);
 }
 
 void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const ForwardDynamics::Request& req,
                               ForwardDynamics::Response& res) {
   const bool with_wrenches = decode_dynamics_request(scene, ws, req, "effort", req.effort);
-  const Model<double>& model = *scene.model;
-  const Eigen::VectorXd& qdd = with_wrenches ? forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x, ws.f_ext)
-                                             : forward_dynamics(model, *ws.data, ws.q, ws.qd, ws.x);
+  const Model<double>& model = model_for(scene, req.rigid_body_only);
+  Data<double>& data = *ws.data;
+  const Eigen::VectorXd& qdd =
+      with_actuators(scene, req.rigid_body_only)
+          ? (with_wrenches ? forward_dynamics_actuated(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
+                           : forward_dynamics_actuated(model, data, ws.q, ws.qd, ws.x))
+          : (with_wrenches ? forward_dynamics(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
+                           : forward_dynamics(model, data, ws.q, ws.qd, ws.x));
   check_finite(qdd, "acceleration");
   res.name = scene.decoder->jointNames();
   copy_to(qdd, res.acceleration);
@@ -151,7 +161,7 @@ void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const For
 void compute_mass_matrix(const ServedScene& scene, Workspace& ws, const MassMatrix::Request& req,
                          MassMatrix::Response& res) {
   decode_positions(scene, ws, req.name, req.position);
-  const Eigen::MatrixXd& M = crba(*scene.model, *ws.data, ws.q);
+  const Eigen::MatrixXd& M = crba(model_for(scene, req.rigid_body_only), *ws.data, ws.q);  // with armature
   check_finite(M, "mass matrix");
   res.name = scene.decoder->jointNames();
   res.mass_matrix.resize(M.size());
@@ -190,7 +200,9 @@ bool compute_latest_torques(const ServedScene& scene, Workspace& ws, std::vector
   const JointRequestDecoder& decoder = *scene.decoder;
   check(decoder.decode("position", {}, {}, {}, JointRequestDecoder::Default::LatestPosition, ws.state, ws.q));
   check(decoder.decode("velocity", {}, {}, {}, JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
-  const Eigen::VectorXd& tau = nonlinear_effects(*scene.model, *ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
+  const Eigen::VectorXd& tau = with_actuators(scene, false)
+                                   ? inverse_dynamics_actuated(*scene.model, *ws.data, ws.q, ws.qd, ws.data->zero_v)
+                                   : nonlinear_effects(*scene.model, *ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
   check_finite(tau, "computed torque");
   copy_to(ws.q, position);
   copy_to(ws.qd, velocity);

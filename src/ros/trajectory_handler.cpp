@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
 #include "spatial_dynamics/algorithms/rnea_batch.hpp"
 #include "spatial_dynamics/ros/service_handlers.hpp"
 #include "spatial_dynamics/ros/trajectory_differences.hpp"
@@ -60,7 +61,7 @@ void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws
                                          const InverseDynamicsTrajectory::Request& req,
                                          InverseDynamicsTrajectory::Response& res) {
   const JointRequestDecoder& decoder = *scene.decoder;
-  const Model<double>& model = *scene.model;
+  const Model<double>& model = model_for(scene, req.rigid_body_only);
   const trajectory_msgs::JointTrajectory& trajectory = req.trajectory;
   const std::vector<std::string>& names = trajectory.joint_names;
   const std::string error = decoder.resolve(names, ws.indices);  // unknown or repeated joint
@@ -150,7 +151,9 @@ void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws
     append_message(notes, differences_note(missing_velocities, missing_accelerations, count));
 
   try {
-    rnea_batch(model, *ws.batch, q, qd, qdd, ws.trajectory_tau);
+    rnea_batch(model, *ws.batch, q, qd, qdd, ws.trajectory_tau);  // with armature ⊙ q̈
+    if (with_actuators(scene, req.rigid_body_only))                 // and the damping and friction forces
+      for (std::size_t k = 0; k < count; ++k) ws.trajectory_tau.col(k) += actuator_forces(model, *ws.data, qd.col(k));
   } catch (const std::exception& e) {  // "state k: …" is point k
     std::string message = e.what();
     if (message.rfind("state ", 0) == 0) message.replace(0, 6, "point ");

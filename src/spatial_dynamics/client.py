@@ -291,28 +291,40 @@ class DynamicsClient(object):
 
     # --- joint services ---------------------------------------------------------------------
 
-    def inverse_dynamics(self, position=None, velocity=None, acceleration=None, external_wrenches=()):
-        """tau = ID(q, qd, qdd, wrenches), as JointValues of the efforts."""
+    def inverse_dynamics(self, position=None, velocity=None, acceleration=None, external_wrenches=(),
+                         rigid_body_only=False):
+        """tau = ID(q, qd, qdd, wrenches), as JointValues of the efforts, with the actuator terms of
+        the node's ~actuator_model unless rigid_body_only. Its `actuator_effort` is the actuators'
+        part of the efforts (JointValues), or None when the answer has none."""
         request = InverseDynamicsRequest()
         request.name, (request.position, request.velocity, request.acceleration) = _joint_arrays(
             [('position', position, False), ('velocity', velocity, False), ('acceleration', acceleration, True)])
         request.external_wrenches = [_to_wrench_stamped(w) for w in external_wrenches or ()]
+        request.rigid_body_only = bool(rigid_body_only)
         response = self._call('inverse_dynamics', request)
-        return JointValues(response.name, response.effort, response.message)
+        result = JointValues(response.name, response.effort, response.message)
+        result.actuator_effort = (JointValues(response.name, response.actuator_effort)
+                                  if response.actuator_effort else None)
+        return result
 
-    def forward_dynamics(self, position=None, velocity=None, effort=None, external_wrenches=()):
-        """qdd = FD(q, qd, tau, wrenches), as JointValues of the accelerations."""
+    def forward_dynamics(self, position=None, velocity=None, effort=None, external_wrenches=(),
+                         rigid_body_only=False):
+        """qdd = FD(q, qd, tau, wrenches), as JointValues of the accelerations (actuator terms as
+        for inverse_dynamics)."""
         request = ForwardDynamicsRequest()
         request.name, (request.position, request.velocity, request.effort) = _joint_arrays(
             [('position', position, False), ('velocity', velocity, False), ('effort', effort, True)])
         request.external_wrenches = [_to_wrench_stamped(w) for w in external_wrenches or ()]
+        request.rigid_body_only = bool(rigid_body_only)
         response = self._call('forward_dynamics', request)
         return JointValues(response.name, response.acceleration, response.message)
 
-    def mass_matrix(self, position=None):
-        """M(q) as a MassMatrixResult (`matrix`, `names`)."""
+    def mass_matrix(self, position=None, rigid_body_only=False):
+        """M(q) (+ diag(armature) with an actuator model, unless rigid_body_only) as a
+        MassMatrixResult (`matrix`, `names`)."""
         request = MassMatrixRequest()
         request.name, (request.position,) = _joint_arrays([('position', position, False)])
+        request.rigid_body_only = bool(rigid_body_only)
         response = self._call('mass_matrix', request)
         n = len(response.name)
         if len(response.mass_matrix) != n * n:
@@ -322,7 +334,7 @@ class DynamicsClient(object):
         return MassMatrixResult(response.name, matrix, response.message)
 
     def inverse_dynamics_trajectory(self, positions, time_from_start=None, velocities=None, accelerations=None,
-                                    joint_names=None):
+                                    joint_names=None, rigid_body_only=False):
         """Inverse dynamics at every point of a trajectory, as a TrajectoryResult.
 
         `positions` is a trajectory_msgs/JointTrajectory (sent as it is; the other arguments must
@@ -332,6 +344,7 @@ class DynamicsClient(object):
         None (the node takes finite differences of the positions), or a row per point, where a
         row may be None (differences at that point)."""
         request = InverseDynamicsTrajectoryRequest()
+        request.rigid_body_only = bool(rigid_body_only)
         if isinstance(positions, JointTrajectory):
             if any(x is not None for x in (time_from_start, velocities, accelerations, joint_names)):
                 raise ValueError('a JointTrajectory carries its own times, velocities, accelerations and names')

@@ -116,6 +116,11 @@ class PythonClient(unittest.TestCase):
         # The wrench changes the answer (it is sent).
         without = self.client.inverse_dynamics(q, qd, qdd)
         self.assertGreater(np.max(np.abs(without.as_array() - tau.as_array())), 1e-3)
+        # The node runs without an actuator model: no actuator effort, and rigid_body_only (sent)
+        # gives the same answer.
+        self.assertIsNone(tau.actuator_effort)
+        rigid = self.client.inverse_dynamics(q, qd, qdd, rigid_body_only=True)
+        np.testing.assert_array_equal(rigid.as_array(), without.as_array())
 
         # By name: the joints given, in the caller's order; the others from joint_states; an
         # acceleration mapping that leaves out a joint gives it 0.

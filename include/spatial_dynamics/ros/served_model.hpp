@@ -1,4 +1,5 @@
-// The models the node serves: the robot as loaded (payloads attached) and one model per scene.
+// The models the node serves: the robot as loaded (payloads attached, actuator terms set) and one
+// model per scene.
 // Immutable once built; the node swaps whole objects, so a call in progress keeps its own.
 #pragma once
 
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/ros/actuator_parameters.hpp"
 #include "spatial_dynamics/ros/joint_request_decoder.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
 
@@ -16,11 +18,13 @@ namespace spatial_dynamics {
 
 /// The robot as loaded: immutable, replaced on ~reload and on ~set_payload.
 struct ServedRobot {
-  std::shared_ptr<const Model<double>> bare;  // from robot_description, independent joints
+  std::shared_ptr<const Model<double>> bare;  // from robot_description, independent joints, with the
+                                              // actuator terms of ~actuator_model and ~actuators
   std::shared_ptr<const Model<double>> full;  // with the payloads attached
   std::shared_ptr<JointStateCache> cache;     // every joint of the robot; survives payload changes
   std::string robot_name;
   std::string root_frame;                     // the URDF root link: the frame tf chains through
+  ActuatorModel actuator_model = ActuatorModel::RigidBody;
 };
 
 /// One scene's model: immutable, replaced when a locked joint moves or the robot changes.
@@ -28,6 +32,7 @@ struct ServedScene {
   std::uint64_t version = 0;                  // unique per build; keys the per-thread workspaces
   std::shared_ptr<const ServedRobot> robot;
   std::shared_ptr<const Model<double>> model;
+  std::shared_ptr<const Model<double>> rigid_model;  // the same without actuator terms (rigid_body_only)
   std::unique_ptr<JointRequestDecoder> decoder;
   std::vector<std::pair<int, double>> locks;  // (joint-state index, locked position)
   std::string error;                          // why the scene has no model ("" when it has one)

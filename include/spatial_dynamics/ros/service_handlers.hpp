@@ -33,6 +33,17 @@ struct Workspace {
   Eigen::MatrixXd trajectory_q, trajectory_qd, trajectory_qdd, trajectory_tau;  // one column per point
 };
 
+/// Whether an answer includes the actuator terms: the node has an actuator model (~actuator_model)
+/// and the request did not ask for rigid_body_only.
+inline bool with_actuators(const ServedScene& scene, bool rigid_body_only) {
+  return scene.robot->actuator_model != ActuatorModel::RigidBody && !rigid_body_only;
+}
+
+/// The model an answer is computed on: the scene's, or the same without actuator terms.
+inline const Model<double>& model_for(const ServedScene& scene, bool rigid_body_only) {
+  return rigid_body_only ? *scene.rigid_model : *scene.model;
+}
+
 /// Adds `more` to a response message ("a; b").
 void append_message(std::string& message, const std::string& more);
 
