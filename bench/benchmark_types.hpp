@@ -11,12 +11,15 @@
 
 namespace bench {
 
-enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk };
+// RneaActuated, AbaActuated: inverse_dynamics_actuated and forward_dynamics_actuated with the
+// actuator terms of benchmark_actuators.hpp (ours only).
+enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk, RneaActuated, AbaActuated };
 
 inline const std::vector<Algorithm>& all_algorithms() {
   static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::RneaBatch, Algorithm::Aba, Algorithm::AbaRefined,
                                              Algorithm::Crba,         Algorithm::CrbaCholesky,
-                                             Algorithm::Gravity,      Algorithm::Fk};
+                                             Algorithm::Gravity,      Algorithm::Fk,        Algorithm::RneaActuated,
+                                             Algorithm::AbaActuated};
   return all;
 }
 
@@ -31,14 +34,19 @@ inline const char* name(Algorithm a) {
     case Algorithm::CrbaCholesky: return "crba_cholesky";
     case Algorithm::Gravity: return "gravity";
     case Algorithm::Fk: return "fk";
+    case Algorithm::RneaActuated: return "rnea_actuated";
+    case Algorithm::AbaActuated: return "aba_actuated";
   }
   return "?";
 }
 
+/// The rows with actuator terms (benchmark_actuators.hpp), run on the shared robots only.
+inline bool is_actuated(Algorithm a) { return a == Algorithm::RneaActuated || a == Algorithm::AbaActuated; }
+
 /// Forward dynamics algorithms take τ and return q̈; the others are checked against their own
 /// reference (τ, M, g or body poses).
 inline bool is_forward_dynamics(Algorithm a) {
-  return a == Algorithm::Aba || a == Algorithm::AbaRefined || a == Algorithm::CrbaCholesky;
+  return a == Algorithm::Aba || a == Algorithm::AbaRefined || a == Algorithm::CrbaCholesky || a == Algorithm::AbaActuated;
 }
 
 /// One random state in spatial_dynamics' coordinates: q ∈ U(−π, π) (a unit quaternion for a free

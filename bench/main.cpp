@@ -292,8 +292,12 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
     l.adapter->prepare(states);
   }
 
-  // Errors against the reference, state by state; the float128 mass matrix within a budget.
-  Reference reference(model);
+  // Errors against the reference, state by state; the float128 mass matrix within a budget. The
+  // rows with actuator terms on the shared robots (not their scenes).
+  std::error_code ec;
+  const bool shared_robot =
+      spec.kept_joints.empty() && fs::equivalent(fs::path(spec.path).parent_path(), SD_ROBOTS_DIR, ec);
+  Reference reference(model, shared_robot);
   struct Tally {
     std::vector<double> errors;
     std::string failure;
@@ -342,7 +346,7 @@ void run_model(const ModelSpec& spec, const Settings& settings, std::vector<Row>
   for (Loaded& l : adapters) {
     if (!l.adapter) continue;
     for (Algorithm a : all_algorithms()) {
-      if (!l.adapter->supports(a)) continue;
+      if (!l.adapter->supports(a) || (is_actuated(a) && !shared_robot)) continue;
       Row row;
       row.library = l.adapter->library();
       row.algorithm = name(a);
@@ -411,6 +415,49 @@ const Row* find(const std::vector<Row>& rows, const std::string& lib, const std:
   return nullptr;
 }
 
+/// The comparators' smallest forward-dynamics error on a model (not our default build's rows).
+double best_peer_fd(const std::vector<Row>& rows, const std::string& model, const std::string& base) {
+  double best = INFINITY;
+  for (const Row& r : rows)
+    if (r.library.rfind("spatial_dynamics", 0) != 0 && r.model == model && r.base == base && r.failure.empty() &&
+        (r.algorithm == "aba" || r.algorithm == "crba_cholesky"))
+      best = std::min(best, r.max_err);
+  return best;
+}
+
+/// The bound a rigid-body row's error is held to: RNEA 4e-15; ABA its anchor, else the best
+/// comparator's forward dynamics on the model.
+double rigid_row_bound(const Row& r, const std::vector<Row>& rows) {
+  if (r.algorithm == "rnea") return 4e-15;
+  const auto anchor = anchor_fd().find(r.base == "fixed" ? r.model : "");
+  return anchor != anchor_fd().end() ? anchor->second : best_peer_fd(rows, r.model, r.base);
+}
+
+/// The rows with actuator terms against their rigid-body rows of the same run: time ratio (≤ 1.10)
+/// and error against the float128 reference within the rigid row's bound.
+std::string actuated_rows(const std::vector<Row>& rows) {
+  std::ostringstream s;
+  s << "| model | base | library | row | ns | rigid-body row (ns) | time ratio | ≤ 1.10 | max error | bound | within |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const Row& a : rows) {
+    if ((a.algorithm != "rnea_actuated" && a.algorithm != "aba_actuated") || a.scalar != "double" || !a.failure.empty())
+      continue;
+    const std::string rigid = a.algorithm == "rnea_actuated" ? "rnea" : "aba";
+    for (const Row& r : rows) {
+      if (r.library != a.library || r.algorithm != rigid || r.model != a.model || r.base != a.base ||
+          r.scalar != a.scalar || !r.failure.empty())
+        continue;
+      const double ratio = a.ns_median / r.ns_median, bound = rigid_row_bound(r, rows);
+      std::snprintf(line, sizeof line, "| %s | %s | %s | %s | %.0f | %.0f | %.3f | %s | %.2e | %.1e | %s |\n",
+                    a.model.c_str(), a.base.c_str(), a.library.c_str(), a.algorithm.c_str(), a.ns_median, r.ns_median,
+                    ratio, ratio <= 1.10 ? "yes" : "**no**", a.max_err, bound, a.max_err <= bound ? "yes" : "**no**");
+      s << line;
+    }
+  }
+  return s.str();
+}
+
 std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
   std::ostringstream s;
   s << "| model | base | RNEA | CRBA | ≤ 4e-15 | ABA | ABA, first 100 states | best anchor FD (100 states) | "
@@ -422,11 +469,7 @@ std::string acceptance(const std::vector<Row>& rows, const std::vector<ModelSpec
     const Row* aba = find(rows, "spatial_dynamics", "aba", m.name, m.base);
     const Row* ref = find(rows, "spatial_dynamics", "aba_refined", m.name, m.base);
     if (!rnea || !crba || !aba || !ref) continue;
-    double best_peer = INFINITY;  // the comparators' (not our default build's, spatial_dynamics_default_build)
-    for (const Row& r : rows)
-      if (r.library.rfind("spatial_dynamics", 0) != 0 && r.model == m.name && r.base == m.base && r.failure.empty() &&
-          (r.algorithm == "aba" || r.algorithm == "crba_cholesky"))
-        best_peer = std::min(best_peer, r.max_err);
+    const double best_peer = best_peer_fd(rows, m.name, m.base);
     std::error_code ec;
     const bool robot = fs::equivalent(fs::path(m.path).parent_path(), SD_ROBOTS_DIR, ec);  // a shared robot
     const auto anchor = anchor_fd().find(m.base == "fixed" ? m.name : "");
@@ -553,6 +596,12 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
     << "Comparators: Debian's builds (SSE2, no FMA), called from adapters built with " << kBuildFlags << ". "
     << "spatial_dynamics rows: " << our_build_flags(settings) << ".\n\n";
   s << "## Accuracy bounds\n\n" << acceptance(rows, specs) << "\n";
+  s << "## Actuator dynamics\n\n`rnea_actuated` (inverse_dynamics_actuated) and `aba_actuated` "
+       "(forward_dynamics_actuated) with random armature (0–0.5), damping (0–2), Coulomb friction (0–1) and "
+       "friction_velocity (1e-3–0.1) on every joint (bench/benchmark_actuators.hpp), on the shared robots, against "
+       "their rigid-body rows of the same run: time ratio (bound 1.10) and error against the float128 reference "
+       "with the same terms (bound: the rigid row's, RNEA 4e-15, ABA its anchor or the best comparator).\n\n"
+    << actuated_rows(rows) << "\n";
   s << "## Speed ratios\n\nOur double time over the comparator's, both from this run; the best-peer figures are RBDL "
        "3.3.1's and Pinocchio 3.7.0's (built from source with -O3 -march=native on this kind of machine; Debian packages "
        "neither), rescaled by KDL's tree RNEA time in this run over the one measured beside them. Flags: as above.\n\n"
@@ -639,6 +688,8 @@ int main(int argc, char** argv) {
   write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
   std::printf("\nSpeed targets\n\n%s\n", speed_targets(rows, specs).c_str());
   if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
+  std::printf("\nActuator rows against the rigid-body rows\n\n%s\n",
+              actuated_rows(rows).c_str());
   std::printf("wrote %s/results.csv and results.md (%zu rows) in %.0f s\n", settings.out.c_str(), rows.size(),
               std::chrono::duration<double>(Clock::now() - start).count());
   const std::string plot = std::string("/usr/bin/python3 ") + SD_BENCH_PLOT_SCRIPT + " " + settings.out + "/results.csv " +

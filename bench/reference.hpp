@@ -2,6 +2,7 @@
 // exactly (Model::cast), fed the same double inputs converted exactly.
 #pragma once
 
+#include "benchmark_actuators.hpp"
 #include "benchmark_types.hpp"
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
@@ -13,7 +14,10 @@ class Reference {
   using Quad = spatial_dynamics::Quad;
   using VectorQ = spatial_dynamics::VectorX<Quad>;
 
-  explicit Reference(const spatial_dynamics::Model<double>& model) : model_(model.cast<Quad>()), data_(model_) {}
+  /// `with_actuated`: also the rows with actuator terms (rnea_actuated, aba_actuated).
+  Reference(const spatial_dynamics::Model<double>& model, bool with_actuated)
+      : model_(model.cast<Quad>()), actuated_model_(with_benchmark_actuators(model).cast<Quad>()), data_(model_),
+        with_actuated_(with_actuated) {}
 
   /// Computes every reference result for state s; the mass matrix only when `with_mass_matrix`
   /// (O(n²) in software quad precision: the caller budgets it on large models).
@@ -22,6 +26,10 @@ class Reference {
     const VectorQ q = sd::to_quad(s.q), qd = sd::to_quad(s.qd), qdd = sd::to_quad(s.qdd), tau = sd::to_quad(s.tau);
     tau_ = sd::rnea(model_, data_, q, qd, qdd);
     qdd_ = sd::aba(model_, data_, q, qd, tau);
+    if (with_actuated_) {
+      tau_actuated_ = sd::inverse_dynamics_actuated(actuated_model_, data_, q, qd, qdd);
+      qdd_actuated_ = sd::forward_dynamics_actuated(actuated_model_, data_, q, qd, tau);
+    }
     g_ = sd::gravity_torques(model_, data_, q);
     has_mass_matrix_ = with_mass_matrix;
     if (with_mass_matrix) {
@@ -38,7 +46,7 @@ class Reference {
     }
   }
 
-  bool has(Algorithm a) const { return a != Algorithm::Crba || has_mass_matrix_; }
+  bool has(Algorithm a) const { return (a != Algorithm::Crba || has_mass_matrix_) && (!is_actuated(a) || with_actuated_); }
 
   const VectorQ& of(Algorithm a) const {
     switch (a) {
@@ -47,15 +55,18 @@ class Reference {
       case Algorithm::Gravity: return g_;
       case Algorithm::Crba: return M_;
       case Algorithm::Fk: return poses_;
+      case Algorithm::RneaActuated: return tau_actuated_;
+      case Algorithm::AbaActuated: return qdd_actuated_;
       default: return qdd_;  // every forward dynamics
     }
   }
 
  private:
-  spatial_dynamics::Model<Quad> model_;
+  spatial_dynamics::Model<Quad> model_, actuated_model_;
   spatial_dynamics::Data<Quad> data_;
-  VectorQ tau_, qdd_, g_, M_, poses_;
+  VectorQ tau_, qdd_, g_, M_, poses_, tau_actuated_, qdd_actuated_;
   bool has_mass_matrix_ = false;
+  bool with_actuated_ = false;
 };
 
 }  // namespace bench

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "benchmark_actuators.hpp"
 #include "benchmark_types.hpp"
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
@@ -16,7 +17,7 @@ template <class S>
 class SpatialDynamicsAdapter : public Adapter {
  public:
   explicit SpatialDynamicsAdapter(const spatial_dynamics::Model<double>& model)
-      : model_(model.cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
+      : model_(model.cast<S>()), actuated_model_(with_benchmark_actuators(model).cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
         batch_tau_(model_.nv, kBatchStates) {}
 
   std::string library() const override { return "spatial_dynamics"; }
@@ -39,6 +40,8 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::CrbaCholesky: return "crba + nonlinear_effects + Eigen LLT";
       case Algorithm::Gravity: return "gravity_torques";
       case Algorithm::Fk: return "forward_kinematics";
+      case Algorithm::RneaActuated: return "inverse_dynamics_actuated (armature, damping, friction)";
+      case Algorithm::AbaActuated: return "forward_dynamics_actuated (armature, damping, friction; ABA)";
     }
     return "";
   }
@@ -85,15 +88,19 @@ class SpatialDynamicsAdapter : public Adapter {
         return;
       case Algorithm::Gravity: sd::gravity_torques(model_, data_, q_[k]); return;
       case Algorithm::Fk: sd::forward_kinematics(model_, data_, q_[k]); return;
+      case Algorithm::RneaActuated: sd::inverse_dynamics_actuated(actuated_model_, data_, q_[k], qd_[k], qdd_[k]); return;
+      case Algorithm::AbaActuated: sd::forward_dynamics_actuated(actuated_model_, data_, q_[k], qd_[k], tau_[k]); return;
     }
   }
 
   Eigen::VectorXd result(Algorithm a) override {
     switch (a) {
       case Algorithm::Rnea:
+      case Algorithm::RneaActuated:
       case Algorithm::Gravity: return data_.tau.template cast<double>();
       case Algorithm::RneaBatch: return batch_tau_.col(0).template cast<double>();
       case Algorithm::Aba:
+      case Algorithm::AbaActuated:
       case Algorithm::AbaRefined: return data_.qdd.template cast<double>();
       case Algorithm::CrbaCholesky: return rhs_.template cast<double>();
       case Algorithm::Crba: return Eigen::Map<const spatial_dynamics::VectorX<S>>(data_.M.data(), data_.M.size()).template cast<double>();
@@ -113,6 +120,7 @@ class SpatialDynamicsAdapter : public Adapter {
 
  private:
   spatial_dynamics::Model<S> model_;
+  spatial_dynamics::Model<S> actuated_model_;  // the same with the actuator terms (Data depends on the structure only)
   spatial_dynamics::Data<S> data_;
   spatial_dynamics::RefinementWorkspace<S> refinement_;
   spatial_dynamics::RefinementWorkspace<S, spatial_dynamics::Quad> refinement_fine_;

@@ -37,6 +37,16 @@ __attribute__((visibility("default"))) const BackendTable& SD_BACKEND_ENTRY() {
         return f_ext ? spatial_dynamics::forward_dynamics(m, d, q, qd, tau, *f_ext)
                      : spatial_dynamics::forward_dynamics(m, d, q, qd, tau);
       },
+      [](const Model<double>& m, Data<double>& d, const Vec& q, const Vec& qd, const Vec& qdd,
+         const Forces* f_ext) -> const VectorX<double>& {
+        return f_ext ? spatial_dynamics::inverse_dynamics_actuated(m, d, q, qd, qdd, *f_ext)
+                     : spatial_dynamics::inverse_dynamics_actuated(m, d, q, qd, qdd);
+      },
+      [](const Model<double>& m, Data<double>& d, const Vec& q, const Vec& qd, const Vec& tau,
+         const Forces* f_ext) -> const VectorX<double>& {
+        return f_ext ? spatial_dynamics::forward_dynamics_actuated(m, d, q, qd, tau, *f_ext)
+                     : spatial_dynamics::forward_dynamics_actuated(m, d, q, qd, tau);
+      },
       [](const Model<double>& m, Data<double>& d, RefinementWorkspace<double, DoubleDouble>& ws, const Vec& q,
          const Vec& qd, const Vec& tau, int max_iterations) -> const VectorX<double>& {
         return spatial_dynamics::aba_refined(m, d, ws, q, qd, tau, max_iterations);

@@ -88,6 +88,22 @@ const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>
                                         const Vec& tau, const Forces& f_ext) {
   return chosen_backend().forward_dynamics(model, data, q, qd, tau, &f_ext);
 }
+const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
+                                                 const Vec& qd, const Vec& qdd) {
+  return chosen_backend().inverse_dynamics_actuated(model, data, q, qd, qdd, nullptr);
+}
+const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
+                                                 const Vec& qd, const Vec& qdd, const Forces& f_ext) {
+  return chosen_backend().inverse_dynamics_actuated(model, data, q, qd, qdd, &f_ext);
+}
+const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
+                                                 const Vec& qd, const Vec& tau) {
+  return chosen_backend().forward_dynamics_actuated(model, data, q, qd, tau, nullptr);
+}
+const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
+                                                 const Vec& qd, const Vec& tau, const Forces& f_ext) {
+  return chosen_backend().forward_dynamics_actuated(model, data, q, qd, tau, &f_ext);
+}
 const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
                                    RefinementWorkspace<double, DoubleDouble>& ws, const Vec& q, const Vec& qd,
                                    const Vec& tau, int max_iterations) {

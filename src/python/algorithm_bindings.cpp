@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "array_arguments.hpp"
 #include "external_wrenches.hpp"
@@ -17,23 +18,34 @@ namespace {
 
 using Vec = Eigen::Map<const Eigen::VectorXd>;
 
-py::array_t<double> rnea_method(const BoundModel& bound, const py::handle& q, const py::handle& qd,
-                                const py::handle& qdd, const py::handle& external_wrenches) {
+/// A call of the shape f(model, data, q, qd, x[, f_ext]) → nv-vector (rnea and the actuated
+/// inverse and forward dynamics): x named `x_name`, external wrenches as rnea's.
+template <class Call>
+py::array_t<double> state_call(const BoundModel& bound, const py::handle& q, const py::handle& qd, const py::handle& x,
+                               const char* x_name, const py::handle& external_wrenches, Call call) {
   const Model<double>& model = bound.model();
   const InputArray q_in = checked_vector("q", q, bound.positionNames());
   const InputArray qd_in = checked_vector("qd", qd, bound.velocityNames());
-  const InputArray qdd_in = checked_vector("qdd", qdd, bound.velocityNames());
+  const InputArray x_in = checked_vector(x_name, x, bound.velocityNames());
   BoundModel::Lease ws = bound.acquire();
   const bool with_wrenches = decode_external_wrenches(model, external_wrenches, ws->f_ext);
   py::array_t<double> out = new_vector(model.nv);
   double* result = out.mutable_data();
-  const Vec q_v = view(q_in), qd_v = view(qd_in), qdd_v = view(qdd_in);
+  const Vec q_v = view(q_in), qd_v = view(qd_in), x_v = view(x_in);
   {
     py::gil_scoped_release unlocked;
-    copy_into(result, with_wrenches ? rnea(model, ws->data, q_v, qd_v, qdd_v, ws->f_ext)
-                                    : rnea(model, ws->data, q_v, qd_v, qdd_v));
+    copy_into(result, call(model, ws->data, q_v, qd_v, x_v, with_wrenches ? &ws->f_ext : nullptr));
   }
   return out;
+}
+
+using Wrenches = const std::vector<ForceVector<double>>*;
+
+py::array_t<double> rnea_method(const BoundModel& bound, const py::handle& q, const py::handle& qd,
+                                const py::handle& qdd, const py::handle& external_wrenches) {
+  return state_call(bound, q, qd, qdd, "qdd", external_wrenches,
+                    [](const Model<double>& m, Data<double>& d, const Vec& q, const Vec& qd, const Vec& qdd,
+                       Wrenches f) -> const Eigen::VectorXd& { return f ? rnea(m, d, q, qd, qdd, *f) : rnea(m, d, q, qd, qdd); });
 }
 
 py::array_t<double> aba_method(const BoundModel& bound, const py::handle& q, const py::handle& qd,
@@ -115,6 +127,35 @@ py::array_t<double> nonlinear_effects_method(const BoundModel& bound, const py::
   return out;
 }
 
+py::array_t<double> inverse_dynamics_actuated_method(const BoundModel& bound, const py::handle& q, const py::handle& qd,
+                                                     const py::handle& qdd, const py::handle& external_wrenches) {
+  return state_call(bound, q, qd, qdd, "qdd", external_wrenches,
+                    [](const Model<double>& m, Data<double>& d, const Vec& q, const Vec& qd, const Vec& qdd,
+                       Wrenches f) -> const Eigen::VectorXd& {
+                      return f ? inverse_dynamics_actuated(m, d, q, qd, qdd, *f) : inverse_dynamics_actuated(m, d, q, qd, qdd);
+                    });
+}
+
+py::array_t<double> forward_dynamics_actuated_method(const BoundModel& bound, const py::handle& q, const py::handle& qd,
+                                                     const py::handle& tau, const py::handle& external_wrenches) {
+  return state_call(bound, q, qd, tau, "tau", external_wrenches,
+                    [](const Model<double>& m, Data<double>& d, const Vec& q, const Vec& qd, const Vec& tau,
+                       Wrenches f) -> const Eigen::VectorXd& {
+                      return f ? forward_dynamics_actuated(m, d, q, qd, tau, *f) : forward_dynamics_actuated(m, d, q, qd, tau);
+                    });
+}
+
+py::array_t<double> actuator_forces_method(const BoundModel& bound, const py::handle& qd) {
+  const Model<double>& model = bound.model();
+  const InputArray qd_in = checked_vector("qd", qd, bound.velocityNames());
+  py::array_t<double> out = new_vector(model.nv);
+  double* result = out.mutable_data();
+  const Vec qd_v = view(qd_in);
+  BoundModel::Lease ws = bound.acquire();
+  copy_into(result, actuator_forces(model, ws->data, qd_v));
+  return out;
+}
+
 py::array_t<double> frame_jacobian_method(const BoundModel& bound, const std::string& frame, const py::handle& q,
                                           const std::string& reference) {
   const Model<double>& model = bound.model();
@@ -156,6 +197,15 @@ void def_algorithms(py::class_<BoundModel, std::shared_ptr<BoundModel>>& cls) {
   cls.def("gravity_torques", &gravity_torques_method, py::arg("q"), "g(q) = ID(q, 0, 0).");
   cls.def("nonlinear_effects", &nonlinear_effects_method, py::arg("q"), py::arg("qd"),
           "C(q, qd) qd + g(q) = ID(q, qd, 0).");
+  cls.def("inverse_dynamics_actuated", &inverse_dynamics_actuated_method, py::arg("q"), py::arg("qd"), py::arg("qdd"),
+          py::arg("external_wrenches") = py::none(),
+          "rnea plus the actuators' damping and friction forces (armature is in rnea already): what the\n"
+          "actuators must produce.");
+  cls.def("forward_dynamics_actuated", &forward_dynamics_actuated_method, py::arg("q"), py::arg("qd"), py::arg("tau"),
+          py::arg("external_wrenches") = py::none(),
+          "qdd from (M + diag(armature)) qdd = tau - h - actuator_forces(qd).");
+  cls.def("actuator_forces", &actuator_forces_method, py::arg("qd"),
+          "damping * qd + friction * clip(qd / friction_velocity, -1, 1), per velocity coordinate.");
   cls.def("frame_jacobian", &frame_jacobian_method, py::arg("frame"), py::arg("q"),
           py::arg("reference") = "root_aligned",
           "The 6 x nv Jacobian (angular rows first) of a frame's spatial velocity, about the frame's origin, in\n"

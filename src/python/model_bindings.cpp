@@ -5,10 +5,13 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "array_arguments.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 
@@ -92,6 +95,44 @@ std::shared_ptr<BoundModel> lock_method(const BoundModel& bound, const py::handl
   return reduced(bound, scene);
 }
 
+/// The model with some actuator terms replaced: each argument None (kept), a dict {joint name:
+/// value} (each of the joint's coordinates), or one value per velocity coordinate.
+std::shared_ptr<BoundModel> with_actuators_method(const BoundModel& bound, const py::handle& armature,
+                                                  const py::handle& damping, const py::handle& friction,
+                                                  const py::handle& friction_velocity) {
+  Model<double> model = bound.model();
+  const std::tuple<const char*, const py::handle*, std::vector<double>*> terms[] = {
+      {"armature", &armature, &model.armature},
+      {"damping", &damping, &model.damping},
+      {"friction", &friction, &model.friction},
+      {"friction_velocity", &friction_velocity, &model.friction_velocity}};
+  for (const auto& [term, value, values] : terms) {
+    if (value->is_none()) continue;
+    if (py::isinstance<py::dict>(*value)) {
+      for (const auto& item : py::reinterpret_borrow<py::dict>(*value)) {
+        if (!py::isinstance<py::str>(item.first))
+          throw std::invalid_argument(std::string(term) + ": the keys must be joint names (str)");
+        const std::string name = item.first.cast<std::string>();
+        if (!model.hasJoint(name)) throw std::invalid_argument(std::string(term) + ": unknown joint '" + name + "'");
+        double x;
+        try {
+          x = item.second.cast<double>();
+        } catch (const py::cast_error&) {
+          throw std::invalid_argument(std::string(term) + " of joint '" + name + "' is not a number");
+        }
+        const Joint<double>& j = model.joints[model.jointBody(name)];
+        std::fill_n(values->begin() + j.idx_v, j.nv, x);
+      }
+    } else {
+      const InputArray array = checked_vector(term, *value, bound.velocityNames());
+      values->assign(array.data(), array.data() + array.shape(0));
+    }
+  }
+  model.finalize();  // a negative or non-finite term: std::invalid_argument naming the coordinate
+  py::gil_scoped_release unlocked;
+  return std::make_shared<BoundModel>(std::move(model));
+}
+
 std::vector<std::string> frame_names(const BoundModel& bound) {
   std::vector<std::string> names;
   for (const Frame<double>& frame : bound.model().frames) names.push_back(frame.name);
@@ -114,6 +155,20 @@ void def_model(py::class_<BoundModel, std::shared_ptr<BoundModel>>& cls) {
   cls.def_property_readonly("frame_names", &frame_names, "Every link of the URDF, a frame of the model.");
   cls.def("reduce", &reduce_method, py::arg("joints"), py::arg("positions") = py::none(),
           "A new model keeping `joints`; every other joint is locked at positions[name] (default 0).");
+  cls.def("with_actuators", &with_actuators_method, py::arg("armature") = py::none(), py::arg("damping") = py::none(),
+          py::arg("friction") = py::none(), py::arg("friction_velocity") = py::none(),
+          "A new model with actuator terms: each None (kept), {joint name: value} (each of the joint's\n"
+          "coordinates) or one value per velocity coordinate. armature (kg m^2 or kg) is part of M in every\n"
+          "algorithm; damping and Coulomb friction enter inverse_dynamics_actuated and forward_dynamics_actuated.");
+  for (const char* term : {"armature", "damping", "friction", "friction_velocity"})
+    cls.def_property_readonly(term, [term](const BoundModel& b) {
+      const Model<double>& m = b.model();
+      const std::vector<double>& v = std::string(term) == "armature" ? m.armature
+                                     : std::string(term) == "damping" ? m.damping
+                                     : std::string(term) == "friction" ? m.friction
+                                                                       : m.friction_velocity;
+      return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+    });
   cls.def("lock", &lock_method, py::arg("joints"),
           "A new model with `joints` locked ({name: position}, or names locked at 0); the others are kept.");
   cls.def("__repr__", [](const BoundModel& b) {

@@ -17,6 +17,7 @@
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "spatial_dynamics/reference/mass_matrix.hpp"
+#include "benchmark_actuators.hpp"  // bench/: random actuator terms
 #include "test_utils.hpp"
 
 namespace {
@@ -70,22 +71,7 @@ TEST(ActuatorDynamics, CoulombFrictionFollowsTheWrittenOutLaw) {
   EXPECT_NEAR(sd::actuator_forces(model, data, qd)[0], below, 1e-10);
 }
 
-/// Random actuator terms on every coordinate of a joint (none on a free root's): armature in
-/// [0, 0.5], damping in [0, 2], friction in [0, 1], friction_velocity in [1e-3, 0.1].
-void randomize_actuators(sd::Model<double>& model, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int i = 1; i < model.nbodies(); ++i) {
-    const auto& j = model.joints[i];
-    if (j.coupled || (model.floating_base && i == 1)) continue;
-    for (int k = j.idx_v; k < j.idx_v + j.nv; ++k) {
-      model.armature[k] = 0.5 * u(rng);
-      model.damping[k] = 2.0 * u(rng);
-      model.friction[k] = u(rng);
-      model.friction_velocity[k] = 1e-3 + 0.099 * u(rng);
-    }
-  }
-  model.finalize();
-}
+using bench::randomize_actuators;  // armature 0–0.5, damping 0–2, friction 0–1, friction_velocity 1e-3–0.1
 
 /// max over random states of ‖ID_actuated(q, q̇, FD_actuated(q, q̇, τ)) − τ‖ / ‖τ‖.
 double worst_round_trip(const sd::Model<double>& model, std::mt19937& rng, int states = 20) {

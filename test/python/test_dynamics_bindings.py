@@ -121,6 +121,39 @@ def test_inverse_of_forward_dynamics():
         yield check_inverse_of_forward_dynamics, urdf, floating
 
 
+def test_actuator_terms():
+    """with_actuators against the law written out in numpy, and FD_actuated inverting ID_actuated."""
+    rigid = dynamics.Model.from_urdf(robot_path("ur5.urdf"))
+    n = rigid.nv
+    rng = np.random.default_rng(19)
+    armature, damping = rng.uniform(0, 0.5, n), rng.uniform(0, 2, n)
+    friction, speed = rng.uniform(0, 1, n), rng.uniform(1e-3, 0.1, n)
+    model = rigid.with_actuators(armature=armature, damping=damping, friction=friction, friction_velocity=speed)
+    np.testing.assert_array_equal(model.armature, armature)
+    np.testing.assert_array_equal(rigid.armature, np.zeros(n))  # the original is unchanged
+    for _ in range(10):
+        q, qd, qdd, tau, _ = random_state(model, rng)
+        qd *= 0.1  # through the ramp and beyond
+        law = damping * qd + friction * np.clip(qd / speed, -1.0, 1.0)
+        np.testing.assert_allclose(model.actuator_forces(qd), law, rtol=1e-14, atol=1e-15)
+        expected = rigid.rnea(q, qd, qdd) + armature * qdd + law
+        np.testing.assert_allclose(model.inverse_dynamics_actuated(q, qd, qdd), expected, rtol=1e-13, atol=1e-12)
+        back = model.inverse_dynamics_actuated(q, qd, model.forward_dynamics_actuated(q, qd, tau))
+        assert np.linalg.norm(back - tau) <= 1e-12 * np.linalg.norm(tau)
+    # By joint name; a bad value or joint is refused naming it.
+    named = rigid.with_actuators(armature={rigid.joint_names[2]: 0.25})
+    assert named.armature[2] == 0.25 and named.armature[0] == 0.0
+    for kwargs, culprit in [({"damping": {"no_such_joint": 1.0}}, "no_such_joint"),
+                            ({"armature": {rigid.joint_names[1]: -1.0}}, rigid.joint_names[1]),
+                            ({"friction_velocity": np.zeros(n)}, rigid.joint_names[0])]:
+        try:
+            rigid.with_actuators(**kwargs)
+        except ValueError as e:
+            assert culprit in str(e), str(e)
+        else:
+            raise AssertionError("accepted %r" % kwargs)
+
+
 def test_model_properties():
     model = dynamics.Model.from_urdf(robot_path("solo12.urdf"), floating_base=True)
     assert model.nq == model.nv + 1

@@ -8,6 +8,7 @@
 // above it.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "spatial_dynamics/algorithms/forward_dynamics.hpp"
@@ -15,18 +16,29 @@
 #include "spatial_dynamics/algorithms/rnea.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
+#include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
+
+namespace detail {
+
+/// τ_a of coordinate k at speed v: damping v + friction ramp(v / v_f), dividing only inside the
+/// ramp (a moving joint's speed is mostly outside it: a branch the CPU predicts); NaN stays NaN.
+template <class S>
+SD_INLINE S actuator_force(const Model<S>& model, int k, const S& v) {
+  using std::abs;
+  const S v_f = model.friction_velocity[k];
+  const S ramp = abs(v) >= v_f ? (v > S(0) ? S(1) : S(-1)) : v / v_f;
+  return model.damping[k] * v + model.friction[k] * ramp;
+}
+
+}  // namespace detail
 
 /// τ_a(q̇) = damping ⊙ q̇ + friction ⊙ ramp(q̇ / friction_velocity) in data.actuator_force.
 template <class S>
 const VectorX<S>& actuator_forces(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& qd) {
   detail::check_length("velocity", qd.size(), model.nv);
-  for (int k = 0; k < model.nv; ++k) {
-    const S x = qd[k] / model.friction_velocity[k];
-    const S ramp = x > S(1) ? S(1) : (x < S(-1) ? S(-1) : x);
-    data.actuator_force[k] = model.damping[k] * qd[k] + model.friction[k] * ramp;
-  }
+  for (int k = 0; k < model.nv; ++k) data.actuator_force[k] = detail::actuator_force(model, k, qd[k]);
   return data.actuator_force;
 }
 
@@ -35,36 +47,41 @@ template <class S>
 const VectorX<S>& actuator_effort(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& qd,
                                   const ConstVectorRef<S>& qdd) {
   detail::check_length("acceleration", qdd.size(), model.nv);
-  actuator_forces<S>(model, data, qd);
-  for (int k = 0; k < model.nv; ++k) data.actuator_effort[k] = data.actuator_force[k] + model.armature[k] * qdd[k];
+  detail::check_length("velocity", qd.size(), model.nv);
+  for (int k = 0; k < model.nv; ++k)
+    data.actuator_effort[k] = detail::actuator_force(model, k, qd[k]) + model.armature[k] * qdd[k];
   return data.actuator_effort;
 }
 
 namespace detail {
 
+/// τ += τ_a(q̇) on the RNEA's τ in data.tau.
 template <class S>
 const VectorX<S>& add_actuator_forces(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& qd) {
-  data.tau += actuator_forces<S>(model, data, qd);
+  for (int k = 0; k < model.nv; ++k) data.tau[k] += actuator_force(model, k, qd[k]);
   check_finite_result(model, "inverse dynamics: the joint force", data.tau);
   return data.tau;
 }
 
+/// τ − τ_a(q̇), the joint forces left for the rigid body and the rotors.
 template <class S>
 const VectorX<S>& effort_less_actuator_forces(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& qd,
                                               const ConstVectorRef<S>& tau) {
+  check_length("velocity", qd.size(), model.nv);
   check_length("effort", tau.size(), model.nv);
-  data.effort_less_actuator_force = tau - actuator_forces<S>(model, data, qd);
+  for (int k = 0; k < model.nv; ++k) data.effort_less_actuator_force[k] = tau[k] - actuator_force(model, k, qd[k]);
   return data.effort_less_actuator_force;
 }
 
 }  // namespace detail
 
 /// τ = ID(q, q̇, q̈) + τ_a(q̇): the joint forces the actuators must produce, their rotor inertia,
-/// damping and friction included. Result in data.tau; errors as rnea's.
+/// damping and friction included (the RNEA's passes, then the forces, then one check that τ is
+/// finite). Result in data.tau; errors as rnea's.
 template <class S>
 const VectorX<S>& inverse_dynamics_actuated(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                             const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  rnea(model, data, q, qd, qdd);
+  detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
   return detail::add_actuator_forces(model, data, qd);
 }
 
@@ -73,7 +90,8 @@ template <class S>
 const VectorX<S>& inverse_dynamics_actuated(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                             const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
                                             const std::vector<ForceVector<S>>& f_ext) {
-  rnea(model, data, q, qd, qdd, f_ext);
+  detail::check_external_forces(model, f_ext);
+  detail::rnea_impl(model, data, q, qd, qdd, f_ext.data());
   return detail::add_actuator_forces(model, data, qd);
 }
 
@@ -91,5 +109,23 @@ const VectorX<S>& forward_dynamics_actuated(const Model<S>& model, Data<S>& data
                                             const std::vector<ForceVector<S>>& f_ext) {
   return forward_dynamics(model, data, q, qd, detail::effort_less_actuator_forces(model, data, qd, tau), f_ext);
 }
+
+#ifdef SD_COMPILED_DOUBLE
+// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
+const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data,
+                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
+                                                 const ConstVectorRef<double>& qdd);
+const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data,
+                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
+                                                 const ConstVectorRef<double>& qdd,
+                                                 const std::vector<ForceVector<double>>& f_ext);
+const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data,
+                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
+                                                 const ConstVectorRef<double>& tau);
+const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data,
+                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
+                                                 const ConstVectorRef<double>& tau,
+                                                 const std::vector<ForceVector<double>>& f_ext);
+#endif
 
 }  // namespace spatial_dynamics

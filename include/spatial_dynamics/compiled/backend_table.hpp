@@ -33,6 +33,10 @@ struct BackendTable {
                                 const Forces* f_ext);
   const VectorX<double>& (*forward_dynamics)(const Model<double>&, Data<double>&, const Vec& q, const Vec& qd,
                                              const Vec& tau, const Forces* f_ext);
+  const VectorX<double>& (*inverse_dynamics_actuated)(const Model<double>&, Data<double>&, const Vec& q, const Vec& qd,
+                                                      const Vec& qdd, const Forces* f_ext);
+  const VectorX<double>& (*forward_dynamics_actuated)(const Model<double>&, Data<double>&, const Vec& q, const Vec& qd,
+                                                      const Vec& tau, const Forces* f_ext);
   const VectorX<double>& (*aba_refined)(const Model<double>&, Data<double>&, RefinementWorkspace<double, DoubleDouble>&,
                                         const Vec& q, const Vec& qd, const Vec& tau, int max_iterations);
   const VectorX<double>& (*aba_refined_long_double)(const Model<double>&, Data<double>&,
