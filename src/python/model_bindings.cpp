@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "array_arguments.hpp"
@@ -160,13 +161,13 @@ void def_model(py::class_<BoundModel, std::shared_ptr<BoundModel>>& cls) {
           "A new model with actuator terms: each None (kept), {joint name: value} (each of the joint's\n"
           "coordinates) or one value per velocity coordinate. armature (kg m^2 or kg) is part of M in every\n"
           "algorithm; damping and Coulomb friction enter inverse_dynamics_actuated and forward_dynamics_actuated.");
-  for (const char* term : {"armature", "damping", "friction", "friction_velocity"})
-    cls.def_property_readonly(term, [term](const BoundModel& b) {
-      const Model<double>& m = b.model();
-      const std::vector<double>& v = std::string(term) == "armature" ? m.armature
-                                     : std::string(term) == "damping" ? m.damping
-                                     : std::string(term) == "friction" ? m.friction
-                                                                       : m.friction_velocity;
+  using Term = std::vector<double> Model<double>::*;
+  for (const auto& [name, term] : {std::pair<const char*, Term>{"armature", &Model<double>::armature},
+                                   {"damping", &Model<double>::damping},
+                                   {"friction", &Model<double>::friction},
+                                   {"friction_velocity", &Model<double>::friction_velocity}})
+    cls.def_property_readonly(name, [term = term](const BoundModel& b) {
+      const std::vector<double>& v = b.model().*term;
       return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
     });
   cls.def("lock", &lock_method, py::arg("joints"),

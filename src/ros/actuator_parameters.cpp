@@ -1,5 +1,6 @@
 #include "spatial_dynamics/ros/actuator_parameters.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -77,14 +78,12 @@ void apply_actuator_settings(const ActuatorSettings& settings, bool coupled_mimi
         throw std::runtime_error("parameter " + where + "/" + (values.count("gear_ratio") ? "rotor_inertia" : "gear_ratio") +
                                  " is not set: armature = rotor_inertia · gear_ratio² needs both");
       if (rotor) values["armature"] = values["rotor_inertia"] * values["gear_ratio"] * values["gear_ratio"];
-      for (int k = j.idx_v; k < j.idx_v + j.nv; ++k) {
-        const std::pair<const char*, std::vector<double>*> terms[] = {{"armature", &model.armature},
-                                                                   {"damping", &model.damping},
-                                                                   {"friction", &model.friction},
-                                                                   {"friction_velocity", &model.friction_velocity}};
-        for (const auto& [term, vector] : terms)
-          if (values.count(term)) (*vector)[k] = values[term];
-      }
+      const std::pair<const char*, std::vector<double>*> terms[] = {{"armature", &model.armature},
+                                                                 {"damping", &model.damping},
+                                                                 {"friction", &model.friction},
+                                                                 {"friction_velocity", &model.friction_velocity}};
+      for (const auto& [term, vector] : terms)  // each of the joint's coordinates
+        if (values.count(term)) std::fill_n(vector->begin() + j.idx_v, j.nv, values[term]);
     }
   }
   model.finalize();
