@@ -607,6 +607,42 @@ std::string speed_targets(const std::vector<Row>& rows, const std::vector<ModelS
   return s.str();
 }
 
+/// Forward dynamics against KDL in the package's default build (run-time dispatch), at 0.7 × the
+/// best peer's ABA: over ChainFdSolver_RNE on the serial models ≤ 0.21 (RBDL-clang's ABA ≈ 0.30 × KDL's
+/// forward dynamics on the UR5) and, where KDL has no forward dynamics, over TreeIdSolver_RNE on panda
+/// ≤ 0.17 and talos ≤ 0.10 (the best peer's ABA 0.245 and 0.147 × KDL's tree RNEA on this machine).
+std::string forward_dynamics_targets(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs,
+                                     const Settings& settings) {
+  const std::string ours = settings.default_build ? "spatial_dynamics_default_build" : "spatial_dynamics";
+  if (!settings.default_build && !settings.portable)
+    return "(needs the default build: run with --default-build or --portable)\n";
+  const std::map<std::string, double> tree_targets = {{"panda", 0.17}, {"talos", 0.10}};
+  std::ostringstream s;
+  char line[512];
+  s << "| model | ours: aba, default build (ns) | KDL | KDL (ns) | ratio | target | met | aba_refined / aba |\n"
+       "|---|---|---|---|---|---|---|---|\n";
+  for (const ModelSpec& m : specs) {
+    if (m.base != "fixed" || !m.kept_joints.empty()) continue;
+    const Row* kdl_rnea = find(rows, "kdl", "rnea", m.name, m.base);
+    const Row* aba = find(rows, ours, "aba", m.name, m.base);
+    const Row* refined = find(rows, ours, "aba_refined", m.name, m.base);
+    if (!kdl_rnea || !aba) continue;
+    const bool serial = kdl_rnea->method == "ChainIdSolver_RNE";
+    const Row* kdl = serial ? find(rows, "kdl", "crba_cholesky", m.name, m.base) : kdl_rnea;
+    const auto tree = tree_targets.find(m.name);
+    if (!kdl || (!serial && tree == tree_targets.end())) continue;
+    const double target = serial ? 0.21 : tree->second;
+    const double ratio = aba->ns_median / kdl->ns_median;
+    char refined_ratio[32] = "—";
+    if (refined) std::snprintf(refined_ratio, sizeof refined_ratio, "%.2f", refined->ns_median / aba->ns_median);
+    std::snprintf(line, sizeof line, "| %s | %.0f | %s | %.0f | %.3f | %.2f | %s | %s |\n", m.name.c_str(), aba->ns_median,
+                  serial ? "ChainFdSolver_RNE" : "TreeIdSolver_RNE", kdl->ns_median, ratio, target,
+                  ratio <= target ? "yes" : "**no**", refined_ratio);
+    s << line;
+  }
+  return s.str();
+}
+
 /// The flags our rows were measured with.
 std::string our_build_flags(const Settings& settings) {
 #ifdef SD_BENCH_WITH_NATIVE
@@ -646,6 +682,12 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
        "3.3.1's and Pinocchio 3.7.0's (built from source with -O3 -march=native on this kind of machine; Debian packages "
        "neither), rescaled by KDL's tree RNEA time in this run over the one measured beside them. Flags: as above.\n\n"
     << speed_targets(rows, specs) << "\n";
+  s << "## Forward dynamics against KDL, default build\n\nThe package's own build (run-time dispatch, not "
+       "-march=native): `aba` over KDL's ChainFdSolver_RNE on the serial models and over its TreeIdSolver_RNE on the "
+       "trees, where KDL has no forward dynamics; the targets are 0.7 × the best peer's ABA (RBDL or Pinocchio, -O3 "
+       "-march=native, their faster compiler) on this kind of machine, as ratios to KDL. The last column is "
+       "aba_refined's time over aba's.\n\n"
+    << forward_dynamics_targets(rows, specs, settings) << "\n";
   if (settings.default_build)
     s << "## The default build against -march=native\n\nThe package's default build (`spatial_dynamics_default_build`: "
          "libspatial_dynamics, its " << sd::simd_backend() << " instances chosen at run time) over our -march=native rows, "
@@ -727,6 +769,7 @@ int main(int argc, char** argv) {
   write_csv(settings.out + "/results.csv", rows);
   write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
   std::printf("\nSpeed targets\n\n%s\n", speed_targets(rows, specs).c_str());
+  std::printf("\nForward dynamics against KDL, default build\n\n%s\n", forward_dynamics_targets(rows, specs, settings).c_str());
   if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
   std::printf("\nActuator rows against the rigid-body rows\n\n%s\n",
               actuated_rows(rows).c_str());

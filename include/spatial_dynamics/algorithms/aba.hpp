@@ -97,26 +97,27 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
 }
 
 /// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X.
+/// Iᴬ_i stays in data.IA[i]: the downdate is formed only on its way to the parent.
 template <class S>
 SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
-  Matrix6<S>& IA = data.IA[i].matrix;  // Iᴬ_i, turned into Iᵃ_i in place
+  const Matrix6<S>& IA = data.IA[i].matrix;
   const Vector6<S> U = inertia_times_subspace(j, IA);                         // U = Iᴬ S
   const S D = model.has_armature ? joint_project(j, U) + model.armature[j.idx_v]  // D = Sᵀ U + armature (§7.3)
                                  : joint_project(j, U);                        // D = Sᵀ U
   // D is numerically zero when it is below the rounding noise of the block it is taken from:
   // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
-  // so that the test does not depend on the units (a millimetre robot is not singular).
-  const S scale = one_dof_rotates(j) ? IA.template topLeftCorner<3, 3>().cwiseAbs().maxCoeff()
-                                     : IA.template bottomRightCorner<3, 3>().cwiseAbs().maxCoeff();
+  // so that the test does not depend on the units (a millimetre robot is not singular). The block
+  // is positive semi-definite, so its largest entry is on its diagonal.
+  const int block = one_dof_rotates(j) ? 0 : 3;
+  using std::abs;
+  using std::max;
+  const S scale = max(max(abs(IA(block, block)), abs(IA(block + 1, block + 1))), abs(IA(block + 2, block + 2)));
   if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
   data.U[i].col(0) = U;
   data.D_inv[i](0, 0) = S(1) / D;
-  if (lambda > 0) {
-    for (int c = 0; c < 6; ++c) IA.col(c) -= U * (U[c] / D);                   // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
-    data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);                 // Iᴬ_λ += Xᵀ Iᵃ X
-  }
+  if (lambda > 0) data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.IA[lambda]);
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -146,7 +147,8 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
-/// with split_gravity, the joint forces τ − τ_g(q) in place of τ.
+/// with split_gravity, the joint forces τ − τ_g(q) in place of τ. Leaves Iᴬ_i in data.IA[i] at a
+/// 1-DoF joint and Iᵃ_i at a multi-DoF joint with a parent.
 template <class S>
 SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau_in,
                                 bool split_gravity) {
@@ -158,7 +160,9 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
     if (model.parent[i] == 0) {
       articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), static_cast<const Vector6<S>*>(nullptr));
     } else {
-      const Vector6<S> Ia_c = data.IA[i].matrix * data.c[i].toVector();
+      Vector6<S> Ia_c = (data.IA[i] * data.c[i]).toVector();                   // Iᵃ c: Iᴬ c at a 1-DoF joint,
+      if (model.joints[i].nv == 1)                                               //   − U D⁻¹ Uᵀ c
+        Ia_c -= data.U[i].col(0) * (data.D_inv[i](0, 0) * data.U[i].col(0).dot(data.c[i].toVector()));
       articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), &Ia_c);
     }
   }

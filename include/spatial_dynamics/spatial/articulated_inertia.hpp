@@ -2,9 +2,12 @@
 // ABA. Rigid inertia is the special case B = h×, C = m1.
 #pragma once
 
+#include <type_traits>
+
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
+#include "spatial_dynamics/spatial/packed3_articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 namespace spatial_dynamics {
@@ -25,7 +28,18 @@ struct ArticulatedInertia {
     matrix.template bottomRightCorner<3, 3>() = rigid.mass * Matrix3<S>::Identity();
   }
 
-  ForceVector<S> operator*(const MotionVector<S>& v) const {
+  SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {  // [A ω + B v ; Bᵀ ω + C v] on the blocks' columns
+      using namespace packed3;
+      const InertiaBlocks I = load_blocks(matrix);
+      const Packed3 w = load3(v.angular), lin = load3(v.linear);
+      Packed3 Bt0, Bt1, Bt2;
+      transpose(I.B[0], I.B[1], I.B[2], Bt0, Bt1, Bt2);
+      return {to_vector3(mat_vec(I.A[0], I.A[1], I.A[2], w) + mat_vec(I.B[0], I.B[1], I.B[2], lin)),
+              to_vector3(mat_vec(Bt0, Bt1, Bt2, w) + mat_vec(I.C[0], I.C[1], I.C[2], lin))};
+    }
+#endif
     return {matrix.template topLeftCorner<3, 3>() * v.angular + matrix.template topRightCorner<3, 3>() * v.linear,
             matrix.template bottomLeftCorner<3, 3>() * v.angular + matrix.template bottomRightCorner<3, 3>() * v.linear};
   }

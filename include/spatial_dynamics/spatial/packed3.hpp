@@ -88,6 +88,12 @@ SD_INLINE Packed3 make(double x, double y, double z) { return Packed3{x, y, z, 0
 
 SD_INLINE Packed3 splat(double x) { return Packed3{x, x, x, x}; }
 
+/// Lane k of x in every lane.
+template <int k>
+SD_INLINE Packed3 broadcast(Packed3 x) {
+  return __builtin_shuffle(x, LaneIndex{k, k, k, k});
+}
+
 /// (y, z, x, pad).
 SD_INLINE Packed3 yzx(Packed3 a) { return __builtin_shuffle(a, LaneIndex{1, 2, 0, 3}); }
 
@@ -96,8 +102,7 @@ SD_INLINE Packed3 cross(Packed3 a, Packed3 b) { return yzx(a * yzx(b) - yzx(a) *
 
 /// E x for E given by its columns c0, c1, c2: x₀ c0 + x₁ c1 + x₂ c2.
 SD_INLINE Packed3 mat_vec(Packed3 c0, Packed3 c1, Packed3 c2, Packed3 x) {
-  return c0 * __builtin_shuffle(x, LaneIndex{0, 0, 0, 0}) + c1 * __builtin_shuffle(x, LaneIndex{1, 1, 1, 1}) +
-         c2 * __builtin_shuffle(x, LaneIndex{2, 2, 2, 2});
+  return c0 * broadcast<0>(x) + c1 * broadcast<1>(x) + c2 * broadcast<2>(x);
 }
 
 /// The rows of the matrix with columns c0, c1, c2 (the columns of its transpose).

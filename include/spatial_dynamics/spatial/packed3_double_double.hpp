@@ -41,12 +41,6 @@ SD_INLINE PackedDoubleDouble scale(Packed3 a, const PackedDoubleDouble& x) {
 
 SD_INLINE PackedDoubleDouble operator-(const PackedDoubleDouble& x) { return {-x.hi, -x.lo}; }
 
-/// Lane k of every lane.
-template <int k>
-SD_INLINE Packed3 broadcast(Packed3 x) {
-  return __builtin_shuffle(x, LaneIndex{k, k, k, k});
-}
-
 /// E x for E given by its columns (doubles) and a double-double x. The high parts' chain is a
 /// product and two sums; every error and x's low parts join in a separate tree, so that a chain
 /// of rotations (gravity carried out along a limb) waits on x.hi only a few operations.

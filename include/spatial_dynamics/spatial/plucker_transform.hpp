@@ -11,6 +11,7 @@
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
 #include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/packed3_articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 namespace spatial_dynamics {
@@ -151,7 +152,13 @@ struct PluckerTransform {
     return out;
   }
   /// out += Xᵀ Iᴬ X: the ABA's inward accumulation without a temporary 6×6 matrix.
-  void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
+  SD_INLINE void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      packed3::add_transformed(E, r, packed3::load_blocks(Ia.matrix), out.matrix);
+      return;
+    }
+#endif
     const Matrix3<S> Et = E.transpose();
     const Matrix3<S> A = Et * Ia.matrix.template topLeftCorner<3, 3>() * E;
     const Matrix3<S> B = Et * Ia.matrix.template topRightCorner<3, 3>() * E;
@@ -167,6 +174,21 @@ struct PluckerTransform {
     out.matrix.template topRightCorner<3, 3>() += B_plus_rxC;
     out.matrix.template bottomLeftCorner<3, 3>() += B_plus_rxC.transpose();
     out.matrix.template bottomRightCorner<3, 3>() += C;
+  }
+
+  /// out += Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X for a 1-DoF joint's U = Iᴬ S and D⁻¹ (RBDA Table 7.1): the ABA's
+  /// inward step at such a joint, without forming Iᵃ in memory.
+  SD_INLINE void applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U, const S& D_inv,
+                                            ArticulatedInertia<S>& out) const {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      packed3::InertiaBlocks blocks = packed3::load_blocks(Ia.matrix);
+      packed3::subtract_rank_one(blocks, packed3::load(U.data()), packed3::load_after(U.data() + 2), D_inv);
+      packed3::add_transformed(E, r, blocks, out.matrix);
+      return;
+    }
+#endif
+    applyInverseAdd(ArticulatedInertia<S>(Ia.matrix - U * (D_inv * U.transpose())), out);
   }
 
   // ---- composition and inverse ----------------------------------------------------------

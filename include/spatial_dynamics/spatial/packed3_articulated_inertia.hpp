@@ -1,0 +1,115 @@
+// An articulated inertia Iᴬ = [A B; Bᵀ C] (a symmetric 6×6 matrix, RBDA §7.2) held as the
+// columns of its blocks A, B and C in packed 3-vectors (packed3.hpp): the ABA's inward step at
+// double where SD_PACKED3 is defined. A 3×3 rotation Eᵀ M E is six products of a matrix by its
+// columns' lanes, where Eigen's 3×3 blocks of a 6×6 matrix are strided scalar code.
+#pragma once
+
+#include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/packed3.hpp"
+
+namespace spatial_dynamics {
+#ifdef SD_PACKED3
+namespace packed3 {
+
+/// The columns of A, B and C; Bᵀ is B's transpose, never stored.
+struct InertiaBlocks {
+  Packed3 A[3], B[3], C[3];
+};
+
+// A 6×6 matrix's column is stored in two parts, as it is read back: the first three columns as
+// rows 0–3 and rows 4–5 (A's columns are 4-lane loads of rows 0–3), the last three as rows 0–1
+// and rows 2–5 (B's columns are rows 0–2, C's rows 3–5 read as rows 2–5). A load that spans two
+// earlier stores waits for both to reach the cache; the inward pass reads a parent's inertia
+// right after its child's step wrote it.
+
+/// The blocks of a symmetric 6×6 matrix (column-major): A's columns are the top halves of its
+/// first three columns, B's and C's the top and bottom halves of its last three.
+SD_INLINE InertiaBlocks load_blocks(const Matrix6<double>& M) {
+  const double* m = M.data();
+  InertiaBlocks I;
+  for (int k = 0; k < 3; ++k) {
+    I.A[k] = load(m + 6 * k);
+    I.B[k] = load3(m + 18 + 6 * k);
+    I.C[k] = load_after(m + 20 + 6 * k);
+  }
+  return I;
+}
+
+/// Iᴬ − U D⁻¹ Uᵀ (RBDA Table 7.1) for a rank-one U = (u_ω ; u_v):
+/// A −= u_ω (D⁻¹ u_ω)ᵀ, B −= u_ω (D⁻¹ u_v)ᵀ, C −= u_v (D⁻¹ u_v)ᵀ.
+SD_INLINE void subtract_rank_one(InertiaBlocks& I, Packed3 u_w, Packed3 u_v, double D_inv) {
+  const Packed3 s_w = u_w * splat(D_inv), s_v = u_v * splat(D_inv);
+  I.A[0] -= u_w * broadcast<0>(s_w);
+  I.A[1] -= u_w * broadcast<1>(s_w);
+  I.A[2] -= u_w * broadcast<2>(s_w);
+  I.B[0] -= u_w * broadcast<0>(s_v);
+  I.B[1] -= u_w * broadcast<1>(s_v);
+  I.B[2] -= u_w * broadcast<2>(s_v);
+  I.C[0] -= u_v * broadcast<0>(s_v);
+  I.C[1] -= u_v * broadcast<1>(s_v);
+  I.C[2] -= u_v * broadcast<2>(s_v);
+}
+
+/// Σ_k E(k, c) x_k: the matrix with columns x_0..x_2 times column c of E, whose coefficients are
+/// broadcast from memory (no lane shuffles).
+SD_INLINE Packed3 times_column(const Packed3 (&x)[3], const double* E_column) {
+  return x[0] * splat(E_column[0]) + x[1] * splat(E_column[1]) + x[2] * splat(E_column[2]);
+}
+
+/// (Eᵀ M E)ᵀ = Eᵀ Mᵀ E by its columns, for M by its columns and E column-major: P = M E, then
+/// Pᵀ E from P's rows.
+SD_INLINE void rotate_transposed(const double* E, Packed3 (&M)[3]) {
+  const Packed3 P0 = times_column(M, E), P1 = times_column(M, E + 3), P2 = times_column(M, E + 6);
+  Packed3 rows[3];  // of P
+  transpose(P0, P1, P2, rows[0], rows[1], rows[2]);
+  M[0] = times_column(rows, E);
+  M[1] = times_column(rows, E + 3);
+  M[2] = times_column(rows, E + 6);
+}
+
+/// One of the first three columns of a 6×6 matrix += (top ; bottom): rows 0–3, then rows 4–5.
+SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom) {
+  const Packed3 rows03 = load(column) + __builtin_shuffle(top, bottom, LaneIndex{0, 1, 2, 4});
+  std::memcpy(column, &rows03, sizeof rows03);
+  const __m128d rows45 = _mm_loadu_pd(column + 4) + _mm256_castpd256_pd128((__m256d)__builtin_shuffle(bottom, LaneIndex{1, 2, 1, 2}));
+  _mm_storeu_pd(column + 4, rows45);
+}
+
+/// One of the last three columns of a 6×6 matrix += (top ; bottom): rows 0–1, then rows 2–5.
+SD_INLINE void add_to_right_column(double* column, Packed3 top, Packed3 bottom) {
+  const __m128d rows01 = _mm_loadu_pd(column) + _mm256_castpd256_pd128((__m256d)top);
+  _mm_storeu_pd(column, rows01);
+  const Packed3 rows25 = load(column + 2) + __builtin_shuffle(top, bottom, LaneIndex{2, 4, 5, 6});
+  std::memcpy(column + 2, &rows25, sizeof rows25);
+}
+
+/// out += Xᵀ [A B; Bᵀ C] X for X = (E, r) (plucker_transform.hpp): with A' = Eᵀ A E, B' = Eᵀ B E,
+/// C' = Eᵀ C E and G = B' + r×C', the blocks [A' − G r× + r×B'ᵀ, G ; Gᵀ, C'] — column k of G r×
+/// is G (r × e_k), column k of r×B'ᵀ is r × (row k of B').
+SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& r, InertiaBlocks I,
+                               Matrix6<double>& out) {
+  rotate_transposed(E.data(), I.A);  // A' (symmetric)
+  rotate_transposed(E.data(), I.C);  // C'
+  rotate_transposed(E.data(), I.B);  // B'ᵀ
+  Packed3 B0, B1, B2;                // B'
+  transpose(I.B[0], I.B[1], I.B[2], B0, B1, B2);
+  const Packed3 rr = load3(r);
+  const Packed3 G0 = B0 + cross(rr, I.C[0]), G1 = B1 + cross(rr, I.C[1]), G2 = B2 + cross(rr, I.C[2]);
+  Packed3 Gt0, Gt1, Gt2;  // rows of G
+  transpose(G0, G1, G2, Gt0, Gt1, Gt2);
+  const Packed3 r0 = splat(r.x()), r1 = splat(r.y()), r2 = splat(r.z());
+  const Packed3 TL0 = I.A[0] - (G1 * r2 - G2 * r1) + cross(rr, I.B[0]);  // G (r × e₀) = r₂ G₁ − r₁ G₂
+  const Packed3 TL1 = I.A[1] - (G2 * r0 - G0 * r2) + cross(rr, I.B[1]);  // G (r × e₁) = r₀ G₂ − r₂ G₀
+  const Packed3 TL2 = I.A[2] - (G0 * r1 - G1 * r0) + cross(rr, I.B[2]);  // G (r × e₂) = r₁ G₀ − r₀ G₁
+  double* o = out.data();
+  add_to_left_column(o, TL0, Gt0);
+  add_to_left_column(o + 6, TL1, Gt1);
+  add_to_left_column(o + 12, TL2, Gt2);
+  add_to_right_column(o + 18, G0, I.C[0]);
+  add_to_right_column(o + 24, G1, I.C[1]);
+  add_to_right_column(o + 30, G2, I.C[2]);
+}
+
+}  // namespace packed3
+#endif
+}  // namespace spatial_dynamics
