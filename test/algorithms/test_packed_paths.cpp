@@ -362,3 +362,50 @@ TEST(PackedPaths, GravitySplitWithinAnUlpOfFloat128) {
     if (c.aba_bound > 0) EXPECT_LE(worst_aba, c.aba_bound);
   }
 }
+
+// The ABA's inward step on an articulated inertia's packed blocks (spatial/packed3_articulated_inertia.hpp):
+// Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X and Xᵀ Iᴬ X added to an inertia, and Iᴬ v, against the same products of
+// 6×6 matrices (PluckerTransform::toMotionMatrix) on random transforms and random symmetric
+// positive definite Iᴬ, with U a column of Iᴬ (a coordinate axis' U = Iᴬ S).
+TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
+  SKIP_WITHOUT_AVX2_FMA();
+  using Matrix6 = sd::Matrix6<double>;
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto random_spd = [&]() {
+    Matrix6 L;
+    for (int k = 0; k < 36; ++k) L(k % 6, k / 6) = u(rng);
+    return Matrix6(L * L.transpose() + 0.1 * Matrix6::Identity());
+  };
+  double worst_step = 0, worst_add = 0, worst_product = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const sd::PluckerTransform<double> X(sd::coordinate_rotation(axis, 3 * u(rng)),
+                                         Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Matrix6 Xm = X.toMotionMatrix();
+    const Matrix6 Ia = random_spd(), start = random_spd();
+    const int column = trial % 6;
+    const sd::Vector6<double> U = Ia.col(column);
+    const double D_inv = 1 / Ia(column, column);
+
+    sd::ArticulatedInertia<double> out(start);
+    X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, out);
+    const Matrix6 expected_step = start + Xm.transpose() * (Ia - U * D_inv * U.transpose()) * Xm;
+    worst_step = std::max(worst_step, (out.matrix - expected_step).norm() / expected_step.norm());
+
+    sd::ArticulatedInertia<double> sum(start);
+    X.applyInverseAdd(sd::ArticulatedInertia<double>(Ia), sum);
+    const Matrix6 expected_sum = start + Xm.transpose() * Ia * Xm;
+    worst_add = std::max(worst_add, (sum.matrix - expected_sum).norm() / expected_sum.norm());
+
+    const sd::MotionVector<double> v(Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const sd::Vector6<double> product = (sd::ArticulatedInertia<double>(Ia) * v).toVector();
+    const sd::Vector6<double> expected_product = Ia * v.toVector();
+    worst_product = std::max(worst_product, (product - expected_product).norm() / expected_product.norm());
+  }
+  EXPECT_LE(worst_step, 1e-14);
+  EXPECT_LE(worst_add, 1e-14);
+  EXPECT_LE(worst_product, 1e-15);
+  std::printf("packed articulated inertia: step %.1e, sum %.1e, product %.1e relative to the 6x6 products\n",
+              worst_step, worst_add, worst_product);
+}

@@ -78,16 +78,23 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     F::store(n, b.n);
     F::store(f, b.f);
   }
-  // τ_i = Sᵢᵀ f_i (summed over a coupled joint's bodies), f_λ += ^iX_λᵀ f_i = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12)
+  // τ_i = Sᵢᵀ f_i (summed over a coupled joint's bodies), f_λ += ^iX_λᵀ f_i = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12),
+  // and the rotors' inertia τ_i += armature ⊙ q̈_i (RBDA §7.3): at the joint, or once per coordinate
+  // after the pass where coupled joints share coordinates.
   const bool accumulate = model.has_coupled_joints;
+  const bool armature_at_joint = model.has_armature && !accumulate;
   for (int i = model.nbodies() - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const auto& b = body[i];
     const V n = F::load(b.n), f = F::load(b.f);
-    if (j.nv == 1 && !accumulate)
-      tau[j.idx_v] = F::dot_axis(j, one_dof_rotates(j) ? n : f);
-    else
+    if (j.nv == 1 && !accumulate) {
+      const T projected = F::dot_axis(j, one_dof_rotates(j) ? n : f);
+      tau[j.idx_v] = armature_at_joint ? projected + model.armature[j.idx_v] * qdd[j.idx_v] : projected;
+    } else {
       F::store_force(model, work, i, n, f, tau, accumulate);
+      if (armature_at_joint)
+        for (int k = j.idx_v; k < j.idx_v + j.nv; ++k) tau[k] += model.armature[k] * qdd[k];
+    }
     const int lambda = model.parent[i];
     if (lambda == 0) continue;
     const auto Et = F::transposed_rotation(b);
@@ -96,7 +103,7 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     F::store(F::load(parent.n) + (F::times(Et, n) + F::cross(F::translation(b), Et_f)), parent.n);
     F::store(F::load(parent.f) + Et_f, parent.f);
   }
-  if (model.has_armature)  // the rotors' inertia: τ += armature ⊙ q̈ (RBDA §7.3)
+  if (model.has_armature && accumulate)
     for (int k = 0; k < model.nv; ++k) tau[k] += model.armature[k] * qdd[k];
 }
 
