@@ -276,33 +276,3 @@ TEST(JointSinesAndCosines, EveryRevoluteJointAgainstTheCLibrary) {
     }
   }
 }
-
-// The bias force of a child of the fixed base, v ×* I v with v = S q̇, from one column of I S,
-// against the general product, for every joint kind and both joint types.
-TEST(OneDofBiasForce, MatchesTheGeneralProduct) {
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (const sd::JointType type : {sd::JointType::Revolute, sd::JointType::Prismatic})
-    for (const sd::AxisKind kind : {sd::AxisKind::X, sd::AxisKind::Y, sd::AxisKind::Z, sd::AxisKind::General})
-      for (int trial = 0; trial < 20; ++trial) {
-        sd::Joint<double> j;
-        j.type = type;
-        j.axis_kind = kind;
-        j.axis = kind == sd::AxisKind::X   ? Eigen::Vector3d::UnitX()
-                 : kind == sd::AxisKind::Y ? Eigen::Vector3d::UnitY()
-                 : kind == sd::AxisKind::Z ? Eigen::Vector3d::UnitZ()
-                                           : Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-        const Eigen::Matrix3d R = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
-        const Eigen::Vector3d principal(0.1 + std::abs(u(rng)), 0.1 + std::abs(u(rng)), 0.1 + std::abs(u(rng)));
-        const sd::RigidInertia<double> I(1.5 + u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)),
-                                         R * principal.asDiagonal() * R.transpose() + 3.0 * Eigen::Matrix3d::Identity());
-        const double qd = 4 * u(rng);
-        const sd::MotionVector<double> v = sd::one_dof_motion(j, qd);
-        const sd::ForceVector<double> expected = sd::cross(v, I * v);
-        const sd::ForceVector<double> bias = sd::one_dof_bias_force(j, I, qd);
-        EXPECT_LE((bias.toVector() - expected.toVector()).norm(), 1e-14 * (1 + expected.toVector().norm()))
-            << "type " << static_cast<int>(type) << ", axis kind " << static_cast<int>(kind);
-        if (type == sd::JointType::Revolute) EXPECT_GT(expected.toVector().norm(), 1e-3);  // not between zeros
-        else EXPECT_EQ(bias.toVector(), sd::Vector6<double>::Zero());  // a pure translation has none
-      }
-}

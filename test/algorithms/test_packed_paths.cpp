@@ -363,8 +363,47 @@ TEST(PackedPaths, GravitySplitWithinAnUlpOfFloat128) {
   }
 }
 
+// The ABA's outward pass on packed 3-vectors (algorithms/aba.hpp): per body v_i = X v_λ + S q̇,
+// c_i = c_J + v_i × S q̇, pᴬ_i = v_i ×* I v_i − f_ext and Iᴬ_i = I_i, against the same products
+// of 6×6 matrices and the joint models' S q̇ and c_J, on every joint kind, a branched tree and a
+// floating base, with external forces.
+TEST(PackedPaths, AbaVelocityPassAgainstMatrices) {
+  SKIP_WITHOUT_AVX2_FMA();
+  sd::ModelBuildOptions floating;
+  floating.floating_base = true;
+  std::mt19937 rng(29);
+  double worst = 0;
+  for (const sd::Model<double>& model : {sd::build_model_from_urdf_string(kEveryJointKindUrdf),
+                                         sd::build_model_from_urdf_string(kEveryJointKindUrdf, floating)}) {
+    sd::Data<double> data(model);
+    for (int s = 0; s < 50; ++s) {
+      const VectorXd q = sd_test::random_configuration(model, rng), qd = sd_test::random_vector(model.nv, rng, 3.0);
+      std::vector<sd::ForceVector<double>> f_ext(model.nbodies());
+      for (auto& f : f_ext) f = sd::ForceVector<double>(sd::Vector6<double>(sd_test::random_vector(6, rng)));
+      sd::detail::aba_velocity_pass(model, data, sd::ConstVectorRef<double>(q), sd::ConstVectorRef<double>(qd),
+                                    f_ext.data(), true);
+      for (int i = 1; i < model.nbodies(); ++i) {
+        const sd::Vector6<double> vJ = sd::body_joint_motion(model, data, i, qd.data()).toVector();
+        const sd::Vector6<double> v = data.X_up[i].toMotionMatrix() * data.v[model.parent[i]].toVector() + vJ;
+        const sd::Vector6<double> c = sd::body_joint_bias(model, data, i, qd.data()).toVector() +
+                                      sd::motion_cross_matrix(data.v[i]) * vJ;
+        const sd::Matrix6<double> I = model.inertia[i].toMatrix();
+        const sd::Vector6<double> p = sd::force_cross_matrix(data.v[i]) * (I * v) - f_ext[i].toVector();
+        const auto relative = [](const sd::Vector6<double>& x, const sd::Vector6<double>& y) {
+          return (x - y).norm() / std::max(1.0, y.norm());
+        };
+        worst = std::max({worst, relative(data.v[i].toVector(), v), relative(data.c[i].toVector(), c),
+                          relative(data.f[i].toVector(), p)});
+        EXPECT_EQ(data.IA[i].matrix, I) << model.joint_names[i];
+      }
+    }
+  }
+  EXPECT_LE(worst, 1e-14);
+  std::printf("packed ABA outward pass: worst relative difference %.1e from the 6x6 products\n", worst);
+}
+
 // The ABA's inward step on an articulated inertia's packed blocks (spatial/packed3_articulated_inertia.hpp):
-// Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X and Xᵀ Iᴬ X added to an inertia, and Iᴬ v, against the same products of
+// Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X and Xᵀ Iᴬ X added to an inertia, (Iᴬ − U D⁻¹ Uᵀ) c and Iᴬ v, against the same products of
 // 6×6 matrices (PluckerTransform::toMotionMatrix) on random transforms and random symmetric
 // positive definite Iᴬ, with U a column of Iᴬ (a coordinate axis' U = Iᴬ S).
 TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
@@ -377,7 +416,7 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
     for (int k = 0; k < 36; ++k) L(k % 6, k / 6) = u(rng);
     return Matrix6(L * L.transpose() + 0.1 * Matrix6::Identity());
   };
-  double worst_step = 0, worst_add = 0, worst_product = 0;
+  double worst_step = 0, worst_add = 0, worst_product = 0, worst_downdated_product = 0;
   for (int trial = 0; trial < 300; ++trial) {
     const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     const sd::PluckerTransform<double> X(sd::coordinate_rotation(axis, 3 * u(rng)),
@@ -388,10 +427,15 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
     const sd::Vector6<double> U = Ia.col(column);
     const double D_inv = 1 / Ia(column, column);
 
+    const sd::MotionVector<double> c(Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)));
     sd::ArticulatedInertia<double> out(start);
-    X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, out);
-    const Matrix6 expected_step = start + Xm.transpose() * (Ia - U * D_inv * U.transpose()) * Xm;
+    const sd::Vector6<double> Ia_c =
+        X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, c, out).toVector();
+    const Matrix6 Ia_less = Ia - U * D_inv * U.transpose();
+    const Matrix6 expected_step = start + Xm.transpose() * Ia_less * Xm;
     worst_step = std::max(worst_step, (out.matrix - expected_step).norm() / expected_step.norm());
+    const sd::Vector6<double> expected_Ia_c = Ia_less * c.toVector();
+    worst_downdated_product = std::max(worst_downdated_product, (Ia_c - expected_Ia_c).norm() / expected_Ia_c.norm());
 
     sd::ArticulatedInertia<double> sum(start);
     X.applyInverseAdd(sd::ArticulatedInertia<double>(Ia), sum);
@@ -406,6 +450,7 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
   EXPECT_LE(worst_step, 1e-14);
   EXPECT_LE(worst_add, 1e-14);
   EXPECT_LE(worst_product, 1e-15);
-  std::printf("packed articulated inertia: step %.1e, sum %.1e, product %.1e relative to the 6x6 products\n",
-              worst_step, worst_add, worst_product);
+  EXPECT_LE(worst_downdated_product, 1e-14);
+  std::printf("packed articulated inertia: step %.1e, sum %.1e, product %.1e, downdated product %.1e relative to the "
+              "6x6 products\n", worst_step, worst_add, worst_product, worst_downdated_product);
 }

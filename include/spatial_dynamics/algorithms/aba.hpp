@@ -12,6 +12,7 @@
 #include "spatial_dynamics/algorithms/gravity_split.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/algorithms/vector3_form.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -36,37 +37,58 @@ SD_INLINE void check_aba_inputs(const Model<S>& model, const ConstVectorRef<S>& 
     throw std::invalid_argument("the model has coupled mimic joints, which the ABA cannot solve; use forward_dynamics()");
 }
 
-/// Pass 1 (outward): transforms, velocities, velocity-product accelerations, rigid bias forces.
+/// Pass 1 (outward): transforms, velocities, velocity-product accelerations, rigid bias forces,
+/// on the 3-vectors of this build (vector3_form.hpp); Iᴬ_i = I_i.
 template <class S>
 SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                  const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext, bool split_gravity) {
+  using F = vec3::Form<S>;
+  using V = typename F::Vector;
   joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
   if (split_gravity) gravity_split_start(model, data);
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
-    body_up_transform(model, data, i, q.data(), data.X_up[i]);
+    typename F::Rotation E;
+    V r;
+    F::up_transform(model, data, i, q.data(), E, r);                            // ^iX_λ into data.X_up[i]
     if (split_gravity) gravity_split_outward(model, data, i);                    // g_i = E g_λ
-    if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
-      data.v[i] = one_dof_motion(j, qd[j.idx_v]);
-      data.c[i] = MotionVector<S>::Zero();
-      data.IA[i].assign(model.inertia[i]);                                      // Iᴬ_i = I_i
-      data.f[i] = one_dof_bias_force(j, model.inertia[i], qd[j.idx_v]);        // pᴬ_i = v ×* I v
-      if (f_ext) data.f[i] -= f_ext[i];                                         //        − f_ext
-      continue;
-    } else if (j.nv == 1) {  // S q̇ has one axis: no 6-vector products with zeros
+    // v_i = X v_λ + S q̇ with X m = (E ω ; E (v − r × ω)) (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
+    const MotionVector<S>& parent = data.v[model.parent[i]];
+    const V parent_w = F::load(parent.angular);
+    V w = F::times(E, parent_w), v = F::times(E, F::load(parent.linear) - F::cross(r, parent_w)), cw, cv;
+    if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
       const S qd_i = qd[j.idx_v];
-      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]);
-      add_one_dof_motion(j, qd_i, data.v[i]);                                   // v_i = X v_λ + S q̇
-      data.c[i] = cross_one_dof_motion(data.v[i], j, qd_i);                     // c_i = v_i × S q̇
+      if (one_dof_rotates(j)) {
+        F::add_axis(j, qd_i, w);
+        cw = F::cross_axis(j, w, qd_i);
+        cv = F::cross_axis(j, v, qd_i);
+      } else {
+        F::add_axis(j, qd_i, v);
+        cw = F::load(Vector3<S>(Vector3<S>::Zero()));
+        cv = F::cross_axis(j, w, qd_i);
+      }
     } else {
-      const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data());
-      data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + vJ;             // v_i = X v_λ + S q̇
-      data.c[i] = body_joint_bias(model, data, i, qd.data()) + cross(data.v[i], vJ);  // c_i = c_J + v_i × S q̇
+      const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data()), cJ = body_joint_bias(model, data, i, qd.data());
+      const V jw = F::load(vJ.angular), jv = F::load(vJ.linear);
+      w += jw;
+      v += jv;
+      cw = F::load(cJ.angular) + F::cross(w, jw);
+      cv = F::load(cJ.linear) + (F::cross(w, jv) + F::cross(v, jw));
     }
+    F::store(w, data.v[i].angular);
+    F::store(v, data.v[i].linear);
+    F::store(cw, data.c[i].angular);
+    F::store(cv, data.c[i].linear);
+    V n, f;  // pᴬ_i = v ×* I v − f_ext (eq. 29)
+    F::bias_force(model.inertia[i], w, v, n, f);
+    if (f_ext) {
+      n -= F::load(f_ext[i].angular);
+      f -= F::load(f_ext[i].linear);
+    }
+    F::store(n, data.f[i].angular);
+    F::store(f, data.f[i].linear);
     data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
-    data.f[i] = model.inertia[i].biasForce(data.v[i]);                          // pᴬ_i = v ×* I v
-    if (f_ext) data.f[i] -= f_ext[i];                                           //        − f_ext
   }
 }
 
@@ -96,10 +118,11 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
   }
 }
 
-/// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X.
+/// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ Iᵃ X with
+/// Iᵃ = Iᴬ − U D⁻¹ Uᵀ, and Iᵃ c_i returned for the force part (zero at a joint on the base).
 /// Iᴬ_i stays in data.IA[i]: the downdate is formed only on its way to the parent.
 template <class S>
-SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
+SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
   const Matrix6<S>& IA = data.IA[i].matrix;
@@ -117,7 +140,8 @@ SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i)
   if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
   data.U[i].col(0) = U;
   data.D_inv[i](0, 0) = S(1) / D;
-  if (lambda > 0) data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.IA[lambda]);
+  if (lambda == 0) return ForceVector<S>::Zero();
+  return data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.c[i], data.IA[lambda]);
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -125,25 +149,42 @@ SD_INLINE void one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i)
 /// when solving M δ = r with the factorisation, aba_refined.hpp). p_i holds pᴬ_i on entry.
 template <class S>
 SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data, int i, const S* tau,
-                                      ForceVector<S>* p, Vector6<S>* u, const Vector6<S>* inertia_times_bias) {
+                                      ForceVector<S>* p, Vector6<S>* u, const ForceVector<S>* inertia_times_bias) {
+  using F = vec3::Form<S>;
+  using V = typename F::Vector;
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
-  ForceVector<S>& pA = p[i];  // turned into pᵃ in place
+  V n = F::load(p[i].angular), f = F::load(p[i].linear);  // pᴬ, turned into pᵃ
   if (j.nv == 1) {
-    u[i][0] = tau[j.idx_v] - along_axis(j, one_dof_rotates(j) ? pA.angular : pA.linear);  // u = τ − Sᵀ pᴬ
+    u[i][0] = tau[j.idx_v] - F::dot_axis(j, one_dof_rotates(j) ? n : f);              // u = τ − Sᵀ pᴬ
     if (lambda == 0) return;
+    V U_w, U_v;
+    F::load_halves(data.U[i].data(), U_w, U_v);
     const S scaled = u[i][0] * data.D_inv[i](0, 0);
-    pA.angular += data.U[i].col(0).template head<3>() * scaled;                            // pᵃ = pᴬ + U D⁻¹ u
-    pA.linear += data.U[i].col(0).template tail<3>() * scaled;
+    n += U_w * scaled;                                                                  // pᵃ = pᴬ + U D⁻¹ u
+    f += U_v * scaled;
   } else {
     S column[6];
-    body_joint_project(model, data, i, pA, column);
-    for (int k = 0; k < j.nv; ++k) u[i][k] = tau[j.idx_v + k] - column[k];                // u = τ − Sᵀ pᴬ
+    body_joint_project(model, data, i, p[i], column);
+    for (int k = 0; k < j.nv; ++k) u[i][k] = tau[j.idx_v + k] - column[k];            // u = τ − Sᵀ pᴬ
     if (lambda == 0) return;
-    pA = ForceVector<S>(Vector6<S>(pA.toVector() + data.U[i] * (data.D_inv[i] * u[i])));  // pᵃ = pᴬ + U D⁻¹ u
+    const Vector6<S> U_D_inv_u = data.U[i] * (data.D_inv[i] * u[i]);                   // pᵃ = pᴬ + U D⁻¹ u
+    V U_w, U_v;
+    F::load_halves(U_D_inv_u.data(), U_w, U_v);
+    n += U_w;
+    f += U_v;
   }
-  if (inertia_times_bias) pA += ForceVector<S>(*inertia_times_bias);                        //      + Iᵃ c
-  p[lambda] += data.X_up[i].applyInverse(pA);                                               // pᴬ_λ += Xᵀ pᵃ
+  if (inertia_times_bias) {                                                             //      + Iᵃ c
+    n += F::load(inertia_times_bias->angular);
+    f += F::load(inertia_times_bias->linear);
+  }
+  // pᴬ_λ += Xᵀ pᵃ = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12)
+  const PluckerTransform<S>& X = data.X_up[i];
+  const typename F::Rotation Et = F::transposed(F::rotation(X.E));
+  const V Et_f = F::times(Et, f);
+  ForceVector<S>& parent = p[lambda];
+  F::store(F::load(parent.angular) + (F::times(Et, n) + F::cross(F::load(X.r), Et_f)), parent.angular);
+  F::store(F::load(parent.linear) + Et_f, parent.linear);
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
@@ -155,16 +196,14 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
   const S* tau = split_gravity ? data.tau_less_gravity.data() : tau_in.data();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
     if (split_gravity) gravity_split_inward(model, data, i, tau_in);            // τ − τ_g at joint i
-    if (model.joints[i].nv == 1) one_dof_inertia_step(model, data, i);
-    else multi_dof_inertia_step(model, data, i);
-    if (model.parent[i] == 0) {
-      articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), static_cast<const Vector6<S>*>(nullptr));
+    ForceVector<S> Ia_c;  // Iᵃ c
+    if (model.joints[i].nv == 1) {
+      Ia_c = one_dof_inertia_step(model, data, i);
     } else {
-      Vector6<S> Ia_c = (data.IA[i] * data.c[i]).toVector();                   // Iᵃ c: Iᴬ c at a 1-DoF joint,
-      if (model.joints[i].nv == 1)                                               //   − U D⁻¹ Uᵀ c
-        Ia_c -= data.U[i].col(0) * (data.D_inv[i](0, 0) * data.U[i].col(0).dot(data.c[i].toVector()));
-      articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), &Ia_c);
+      multi_dof_inertia_step(model, data, i);
+      if (model.parent[i] > 0) Ia_c = data.IA[i] * data.c[i];                   // IA[i] holds Iᵃ here
     }
+    articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), model.parent[i] == 0 ? nullptr : &Ia_c);
   }
 }
 
@@ -174,23 +213,33 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
 template <class S>
 SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S>& data, const MotionVector<S>* c,
                                              const Vector6<S>* u, MotionVector<S>* a, S* qdd) {
+  using F = vec3::Form<S>;
+  using V = typename F::Vector;
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
-    const int lambda = model.parent[i];
-    MotionVector<S>& a_i = a[i];
-    a_i = lambda == 0 ? data.X_up[i].applyToLinear(a[0].linear)                   // X a_0 = (0 ; E a_0)
-                      : data.X_up[i].apply(a[lambda]);                             // a' = X a_λ
-    if (c) a_i += c[i];                                                            //      + c
+    const PluckerTransform<S>& X = data.X_up[i];
+    const MotionVector<S>& parent = a[model.parent[i]];
+    const typename F::Rotation E = F::rotation(X.E);
+    const V parent_w = F::load(parent.angular);
+    V w = F::times(E, parent_w), l = F::times(E, F::load(parent.linear) - F::cross(F::load(X.r), parent_w));  // a' = X a_λ
+    if (c) {                                                                                                   //      + c
+      w += F::load(c[i].angular);
+      l += F::load(c[i].linear);
+    }
     if (j.nv == 1) {
-      const auto U = data.U[i].col(0);
-      const S qdd_i = data.D_inv[i](0, 0) *
-                      (u[i][0] - (U.template head<3>().dot(a_i.angular) + U.template tail<3>().dot(a_i.linear)));  // q̈ = D⁻¹(u − Uᵀ a')
+      V U_w, U_v;
+      F::load_halves(data.U[i].data(), U_w, U_v);
+      const S qdd_i = data.D_inv[i](0, 0) * (u[i][0] - (F::dot(U_w, w) + F::dot(U_v, l)));  // q̈ = D⁻¹(u − Uᵀ a')
       qdd[j.idx_v] = qdd_i;
-      add_one_dof_motion(j, qdd_i, a_i);                                           // a = a' + S q̈
+      F::add_axis(j, qdd_i, one_dof_rotates(j) ? w : l);                                  // a = a' + S q̈
+      F::store(w, a[i].angular);
+      F::store(l, a[i].linear);
     } else {
-      const Vector6<S> qdd_i = data.D_inv[i] * (u[i] - data.U[i].transpose() * a_i.toVector());  // zero past nv
+      F::store(w, a[i].angular);
+      F::store(l, a[i].linear);
+      const Vector6<S> qdd_i = data.D_inv[i] * (u[i] - data.U[i].transpose() * a[i].toVector());  // zero past nv
       for (int k = 0; k < j.nv; ++k) qdd[j.idx_v + k] = qdd_i[k];
-      a_i += joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd_i.data());  // a = a' + S q̈
+      a[i] += joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd_i.data());  // a = a' + S q̈
     }
   }
 }

@@ -129,7 +129,7 @@ template <class S, class W>
 void solve_with_aba_factorisation(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W>& ws) {
   for (int i = 1; i < model.nbodies(); ++i) ws.p[i] = ForceVector<S>::Zero();
   for (int i = model.nbodies() - 1; i >= 1; --i)
-    articulated_force_step(model, data, i, ws.residual.data(), ws.p.data(), ws.u.data(), static_cast<const Vector6<S>*>(nullptr));
+    articulated_force_step(model, data, i, ws.residual.data(), ws.p.data(), ws.u.data(), static_cast<const ForceVector<S>*>(nullptr));
   ws.a[0] = MotionVector<S>::Zero();
   articulated_acceleration_pass(model, data, static_cast<const MotionVector<S>*>(nullptr), ws.u.data(), ws.a.data(), ws.delta.data());
 }

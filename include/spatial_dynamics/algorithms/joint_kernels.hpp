@@ -58,47 +58,6 @@ SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
   return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
 }
 
-/// m += S x for a 1-DoF joint.
-template <class S>
-SD_INLINE void add_one_dof_motion(const Joint<S>& j, const S& x, MotionVector<S>& m) {
-  detail::add_along_axis(j, one_dof_rotates(j) ? m.angular : m.linear, x);
-}
-
-/// v × S q̇ for a 1-DoF joint (eq. 17 with S q̇ = (q̇ a; 0) or (0; q̇ a)): (ω × q̇a ; v_O × q̇a) for a
-/// revolute joint, (0 ; ω × q̇a) for a prismatic one.
-template <class S>
-SD_INLINE MotionVector<S> cross_one_dof_motion(const MotionVector<S>& v, const Joint<S>& j, const S& qd) {
-  if (one_dof_rotates(j)) return {detail::cross_axis(j, v.angular, qd), detail::cross_axis(j, v.linear, qd)};
-  return {Vector3<S>::Zero(), detail::cross_axis(j, v.angular, qd)};
-}
-
-/// I S for a 1-DoF joint from the ten parameters (eq. 25 with v = S): (Ī_O a ; −h × a) for a
-/// revolute joint, (h × a ; m a) for a prismatic one; a coordinate axis reads a column of Ī_O.
-template <class S>
-SD_INLINE ForceVector<S> inertia_times_one_dof_subspace(const Joint<S>& j, const RigidInertia<S>& I) {
-  if (!one_dof_rotates(j)) return {detail::cross_axis(j, I.first_moment, S(1)), detail::scaled_axis(j, I.mass)};
-  const Vector3<S> moment_part = detail::cross_axis(j, I.first_moment, S(-1));
-  switch (j.axis_kind) {
-    case AxisKind::X: return {I.rotational_inertia.col(0), moment_part};
-    case AxisKind::Y: return {I.rotational_inertia.col(1), moment_part};
-    case AxisKind::Z: return {I.rotational_inertia.col(2), moment_part};
-    case AxisKind::General: break;
-  }
-  return {I.rotational_inertia * j.axis, moment_part};
-}
-
-/// v ×* I v for v = S q̇ of a 1-DoF joint (eq. 29 with v = S q̇): q̇² (a × F_n ; a × F_f) for a
-/// revolute joint, F = I S; 0 for a prismatic one (v = (0 ; q̇ a), I v = (h × q̇ a ; m q̇ a), and
-/// q̇ a × m q̇ a = 0). The bias force of a body whose parent is the fixed base, without the
-/// 6-vector product I v.
-template <class S>
-SD_INLINE ForceVector<S> one_dof_bias_force(const Joint<S>& j, const RigidInertia<S>& I, const S& qd) {
-  if (!one_dof_rotates(j)) return ForceVector<S>::Zero();
-  const ForceVector<S> F = inertia_times_one_dof_subspace(j, I);
-  const S k = -(qd * qd);  // a × x = x × (−a), and cross_axis(j, x, k) = x × (k a)
-  return {detail::cross_axis(j, F.angular, k), detail::cross_axis(j, F.linear, k)};
-}
-
 /// Sᵀ x for a 1-DoF joint and a force-like 6-vector x (angular part first).
 template <class S>
 SD_INLINE S joint_project(const Joint<S>& j, const Vector6<S>& x) {

@@ -53,6 +53,11 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   static SD_INLINE void store(const Vector& x, Packed3Storage& out) {
     for (int k = 0; k < 3; ++k) out.lane[k] = x[k];
   }
+  /// The halves p[0..2] and p[3..5] of a 6-vector's coefficients.
+  static SD_INLINE void load_halves(const S* p, Vector& top, Vector& bottom) {
+    top = Vector(p[0], p[1], p[2]);
+    bottom = Vector(p[3], p[4], p[5]);
+  }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return R.E * x; }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return cross_3d(a, b); }
   /// The 3×3 matrix with columns c0, c1, c2 (Eᵀ from E's rows, or a symmetric Ī by its columns).
@@ -64,6 +69,9 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
     R.E.col(2) = load(c2);
     return R;
   }
+  /// A 3×3 matrix (a rotation E) from memory, and its transpose.
+  static SD_INLINE Rotation rotation(const Matrix3<S>& M) { return {M}; }
+  static SD_INLINE Rotation transposed(const Rotation& R) { return {R.E.transpose()}; }
   static SD_INLINE Vector column(const Rotation& R, int k) { return R.E.col(k); }
   template <class Storage>
   static SD_INLINE void store_columns(const Matrix3<S>& M, Storage& c0, Storage& c1, Storage& c2) {
@@ -103,15 +111,26 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
     n = I.rotational_inertia * w + cross_3d(I.first_moment, v);
     f = I.mass * v - cross_3d(I.first_moment, w);
   }
+  /// v ×* I v (rigid_inertia.hpp's biasForce).
+  static SD_INLINE void bias_force(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {
+    const ForceVector<S> p = I.biasForce(MotionVector<S>(w, v));
+    n = p.angular;
+    f = p.linear;
+  }
 
-  /// ^iX_λ(i) (joint_kernels.hpp) into b as E's rows and r, and its E and r.
-  template <class Body>
-  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
-                                     Vector& r) {
+  /// ^iX_λ(i) (joint_kernels.hpp) into data.X_up[i], and its E and r.
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Rotation& E, Vector& r) {
     PluckerTransform<S>& X = data.X_up[i];
     body_up_transform(model, data, i, q, X);
     E.E = X.E;
     r = X.r;
+  }
+  /// As above, and into b as E's rows and r.
+  template <class Body>
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
+                                     Vector& r) {
+    up_transform(model, data, i, q, E, r);
+    const PluckerTransform<S>& X = data.X_up[i];
     store(X.E.row(0).transpose(), b.t0);
     store(X.E.row(1).transpose(), b.t1);
     store(X.E.row(2).transpose(), b.t2);
@@ -131,11 +150,23 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   static SD_INLINE void store(const Vector& x, Vector3<S>& out) { packed3::store3(x, out.data()); }
   static SD_INLINE Vector load(const Packed3Storage& v) { return packed3::load(v); }
   static SD_INLINE void store(const Vector& x, Packed3Storage& out) { packed3::store(x, out); }
+  /// The halves p[0..2] and p[3..5] of a 6-vector's coefficients (two 4-lane loads inside it).
+  static SD_INLINE void load_halves(const S* p, Vector& top, Vector& bottom) {
+    top = packed3::load(p);
+    bottom = packed3::load_after(p + 2);
+  }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return packed3::mat_vec(R.c0, R.c1, R.c2, x); }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return packed3::cross(a, b); }
   /// The 3×3 matrix with columns c0, c1, c2 (Eᵀ from E's rows, or a symmetric Ī by its columns).
   static SD_INLINE Rotation columns(const Packed3Storage& c0, const Packed3Storage& c1, const Packed3Storage& c2) {
     return {load(c0), load(c1), load(c2)};
+  }
+  /// A 3×3 matrix (a rotation E) from memory, and its transpose.
+  static SD_INLINE Rotation rotation(const Matrix3<S>& M) { return packed3::columns(M); }
+  static SD_INLINE Rotation transposed(const Rotation& R) {
+    Rotation T;
+    packed3::transpose(R.c0, R.c1, R.c2, T.c0, T.c1, T.c2);
+    return T;
   }
   static SD_INLINE Vector column(const Rotation& R, int k) { return k == 0 ? R.c0 : k == 1 ? R.c1 : R.c2; }
   static SD_INLINE void store_columns(const Matrix3<S>& M, Packed3Storage& c0, Packed3Storage& c1, Packed3Storage& c2) {
@@ -194,12 +225,23 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
     n = mat_vec(I0, I1, I2, w) + packed3::cross(h, v);
     f = I.mass * v - packed3::cross(h, w);
   }
+  /// v ×* I v = (ω × Ī_O ω + h × (ω × v) ; m (ω × v) − ω × (h × ω)) (eq. 29 on eq. 25, as
+  /// rigid_inertia.hpp's biasForce): without v × m v, zero but rounded to the size of m |v|².
+  static SD_INLINE void bias_force(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {
+    using namespace packed3;
+    Packed3 I0, I1, I2;
+    load_columns(I.rotational_inertia, I0, I1, I2);
+    const Packed3 h = packed3::load(I.first_moment.data());  // lane 3 reads Ī_O(0, 0), inside the struct
+    const Packed3 w_x_v = packed3::cross(w, v);
+    n = packed3::cross(w, mat_vec(I0, I1, I2, w)) + packed3::cross(h, w_x_v);
+    f = I.mass * w_x_v - packed3::cross(w, packed3::cross(h, w));
+  }
 
-  /// ^iX_λ(i)'s E and r; a 1-DoF joint's in registers (RBDA Table 4.1:
-  /// E = E_J(θ) E_tree for a revolute joint, r = r_tree + E_treeᵀ (q a) for a prismatic one).
-  template <class Body>
-  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
-                                     Vector& r) {
+  /// ^iX_λ(i)'s E and r, a 1-DoF joint's in registers (RBDA Table 4.1: E = E_J(θ) E_tree for a
+  /// revolute joint, r = r_tree + E_treeᵀ (q a) for a prismatic one); into data.X_up[i] if
+  /// `keep` (always for a joint with several coordinates).
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Rotation& E, Vector& r,
+                                     bool keep = true) {
     const Joint<S>& j = model.joints[i];
     if (j.nv != 1) {  // through data.X_up[i]
       PluckerTransform<S>& X = data.X_up[i];
@@ -216,7 +258,20 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
         const S position = j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
         r += times(packed3::transposed_columns(Xt.E), position * axis(j));
       }
+      if (keep) {
+        PluckerTransform<S>& X = data.X_up[i];
+        packed3::store3(E.c0, X.E.data());
+        packed3::store3(E.c1, X.E.data() + 3);
+        packed3::store3(E.c2, X.E.data() + 6);
+        store(r, X.r);
+      }
     }
+  }
+  /// As above (data.X_up[i] only for a joint with several coordinates), and into b as E's rows and r.
+  template <class Body>
+  static SD_INLINE void up_transform(const Model<S>& model, Data<S>& data, int i, const S* q, Body& b, Rotation& E,
+                                     Vector& r) {
+    up_transform(model, data, i, q, E, r, false);
     Rotation T;
     packed3::transpose(E.c0, E.c1, E.c2, T.c0, T.c1, T.c2);
     store(T.c0, b.t0);

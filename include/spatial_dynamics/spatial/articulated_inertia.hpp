@@ -20,7 +20,13 @@ struct ArticulatedInertia {
   explicit ArticulatedInertia(const Matrix6<S>& m) : matrix(m) {}
   explicit ArticulatedInertia(const RigidInertia<S>& rigid) { assign(rigid); }
 
-  void assign(const RigidInertia<S>& rigid) {
+  SD_INLINE void assign(const RigidInertia<S>& rigid) {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      packed3::store_rigid(rigid.mass, rigid.first_moment, rigid.rotational_inertia, matrix);
+      return;
+    }
+#endif
     const Matrix3<S> hx = skew(rigid.first_moment);
     matrix.template topLeftCorner<3, 3>() = rigid.rotational_inertia;
     matrix.template topRightCorner<3, 3>() = hx;
@@ -32,12 +38,9 @@ struct ArticulatedInertia {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<S, double>::value) {  // [A ω + B v ; Bᵀ ω + C v] on the blocks' columns
       using namespace packed3;
-      const InertiaBlocks I = load_blocks(matrix);
-      const Packed3 w = load3(v.angular), lin = load3(v.linear);
-      Packed3 Bt0, Bt1, Bt2;
-      transpose(I.B[0], I.B[1], I.B[2], Bt0, Bt1, Bt2);
-      return {to_vector3(mat_vec(I.A[0], I.A[1], I.A[2], w) + mat_vec(I.B[0], I.B[1], I.B[2], lin)),
-              to_vector3(mat_vec(Bt0, Bt1, Bt2, w) + mat_vec(I.C[0], I.C[1], I.C[2], lin))};
+      Packed3 top, bottom;
+      times_motion(load_blocks(matrix), v.angular.data(), v.linear.data(), top, bottom);
+      return {to_vector3(top), to_vector3(bottom)};
     }
 #endif
     return {matrix.template topLeftCorner<3, 3>() * v.angular + matrix.template topRightCorner<3, 3>() * v.linear,

@@ -56,6 +56,15 @@ SD_INLINE Packed3 times_column(const Packed3 (&x)[3], const double* E_column) {
   return x[0] * splat(E_column[0]) + x[1] * splat(E_column[1]) + x[2] * splat(E_column[2]);
 }
 
+/// [A B; Bᵀ C] (w ; v) = (A w + B v ; Bᵀ w + C v) for w and v given by their coefficients, which
+/// are broadcast from memory.
+SD_INLINE void times_motion(const InertiaBlocks& I, const double* w, const double* v, Packed3& top, Packed3& bottom) {
+  Packed3 Bt[3];  // Bᵀ by its columns
+  transpose(I.B[0], I.B[1], I.B[2], Bt[0], Bt[1], Bt[2]);
+  top = times_column(I.A, w) + times_column(I.B, v);
+  bottom = times_column(Bt, w) + times_column(I.C, v);
+}
+
 /// (Eᵀ M E)ᵀ = Eᵀ Mᵀ E by its columns, for M by its columns and E column-major: P = M E, then
 /// Pᵀ E from P's rows.
 SD_INLINE void rotate_transposed(const double* E, Packed3 (&M)[3]) {
@@ -67,20 +76,49 @@ SD_INLINE void rotate_transposed(const double* E, Packed3 (&M)[3]) {
   M[2] = times_column(rows, E + 6);
 }
 
-/// One of the first three columns of a 6×6 matrix += (top ; bottom): rows 0–3, then rows 4–5.
-SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom) {
-  const Packed3 rows03 = load(column) + __builtin_shuffle(top, bottom, LaneIndex{0, 1, 2, 4});
+/// One of the first three columns of a 6×6 matrix += (top ; bottom), or = with `add` false:
+/// rows 0–3, then rows 4–5.
+SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom, bool add = true) {
+  Packed3 rows03 = __builtin_shuffle(top, bottom, LaneIndex{0, 1, 2, 4});
+  __m128d rows45 = _mm256_castpd256_pd128((__m256d)__builtin_shuffle(bottom, LaneIndex{1, 2, 1, 2}));
+  if (add) {
+    rows03 += load(column);
+    rows45 += _mm_loadu_pd(column + 4);
+  }
   std::memcpy(column, &rows03, sizeof rows03);
-  const __m128d rows45 = _mm_loadu_pd(column + 4) + _mm256_castpd256_pd128((__m256d)__builtin_shuffle(bottom, LaneIndex{1, 2, 1, 2}));
   _mm_storeu_pd(column + 4, rows45);
 }
 
-/// One of the last three columns of a 6×6 matrix += (top ; bottom): rows 0–1, then rows 2–5.
-SD_INLINE void add_to_right_column(double* column, Packed3 top, Packed3 bottom) {
-  const __m128d rows01 = _mm_loadu_pd(column) + _mm256_castpd256_pd128((__m256d)top);
+/// One of the last three columns of a 6×6 matrix += (top ; bottom), or = with `add` false:
+/// rows 0–1, then rows 2–5.
+SD_INLINE void add_to_right_column(double* column, Packed3 top, Packed3 bottom, bool add = true) {
+  __m128d rows01 = _mm256_castpd256_pd128((__m256d)top);
+  Packed3 rows25 = __builtin_shuffle(top, bottom, LaneIndex{2, 4, 5, 6});
+  if (add) {
+    rows01 += _mm_loadu_pd(column);
+    rows25 += load(column + 2);
+  }
   _mm_storeu_pd(column, rows01);
-  const Packed3 rows25 = load(column + 2) + __builtin_shuffle(top, bottom, LaneIndex{2, 4, 5, 6});
   std::memcpy(column + 2, &rows25, sizeof rows25);
+}
+
+/// The rigid inertia [Ī_O h×; −h× m1] (eq. 25) of mass m and first moment h as a 6×6 matrix,
+/// stored as the inward step reads and adds to it.
+SD_INLINE void store_rigid(double mass, const Vector3<double>& first_moment, const Matrix3<double>& rotational_inertia,
+                           Matrix6<double>& out) {
+  Packed3 I0, I1, I2;
+  load_columns(rotational_inertia, I0, I1, I2);
+  const Packed3 h = load3(first_moment), minus_h = -h;  // lane 3: ±0
+  // h× by its columns (0, h₂, −h₁), (−h₂, 0, h₀), (h₁, −h₀, 0); −h× the same from −h.
+  const LaneIndex hx0{3, 2, 5, 3}, hx1{6, 3, 0, 3}, hx2{1, 4, 3, 3};
+  const Packed3 m = splat(mass), zero = splat(0.0);
+  double* o = out.data();
+  add_to_left_column(o, I0, __builtin_shuffle(minus_h, h, hx0), false);
+  add_to_left_column(o + 6, I1, __builtin_shuffle(minus_h, h, hx1), false);
+  add_to_left_column(o + 12, I2, __builtin_shuffle(minus_h, h, hx2), false);
+  add_to_right_column(o + 18, __builtin_shuffle(h, minus_h, hx0), __builtin_shuffle(m, zero, LaneIndex{0, 4, 4, 4}), false);
+  add_to_right_column(o + 24, __builtin_shuffle(h, minus_h, hx1), __builtin_shuffle(m, zero, LaneIndex{4, 0, 4, 4}), false);
+  add_to_right_column(o + 30, __builtin_shuffle(h, minus_h, hx2), __builtin_shuffle(m, zero, LaneIndex{4, 4, 0, 4}), false);
 }
 
 /// out += Xᵀ [A B; Bᵀ C] X for X = (E, r) (plucker_transform.hpp): with A' = Eᵀ A E, B' = Eᵀ B E,

@@ -176,19 +176,27 @@ struct PluckerTransform {
     out.matrix.template bottomRightCorner<3, 3>() += C;
   }
 
-  /// out += Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X for a 1-DoF joint's U = Iᴬ S and D⁻¹ (RBDA Table 7.1): the ABA's
-  /// inward step at such a joint, without forming Iᵃ in memory.
-  SD_INLINE void applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U, const S& D_inv,
-                                            ArticulatedInertia<S>& out) const {
+  /// out += Xᵀ Iᵃ X for Iᵃ = Iᴬ − U D⁻¹ Uᵀ at a 1-DoF joint (U = Iᴬ S, RBDA Table 7.1), and
+  /// Iᵃ c returned: the ABA's inward step at such a joint, without forming Iᵃ in memory.
+  SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U,
+                                                      const S& D_inv, const MotionVector<S>& c,
+                                                      ArticulatedInertia<S>& out) const {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<S, double>::value) {
-      packed3::InertiaBlocks blocks = packed3::load_blocks(Ia.matrix);
-      packed3::subtract_rank_one(blocks, packed3::load(U.data()), packed3::load_after(U.data() + 2), D_inv);
-      packed3::add_transformed(E, r, blocks, out.matrix);
-      return;
+      using namespace packed3;
+      InertiaBlocks blocks = load_blocks(Ia.matrix);
+      Packed3 top, bottom;  // Iᴬ c
+      times_motion(blocks, c.angular.data(), c.linear.data(), top, bottom);
+      const Packed3 u_w = load(U.data()), u_v = load_after(U.data() + 2);
+      subtract_rank_one(blocks, u_w, u_v, D_inv);
+      add_transformed(E, r, blocks, out.matrix);
+      const Packed3 uc = u_w * load3(c.angular) + u_v * load3(c.linear);
+      const Packed3 k = splat(D_inv * (uc[0] + uc[1] + uc[2]));                // D⁻¹ Uᵀ c
+      return {to_vector3(top - u_w * k), to_vector3(bottom - u_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
     }
 #endif
     applyInverseAdd(ArticulatedInertia<S>(Ia.matrix - U * (D_inv * U.transpose())), out);
+    return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
   }
 
   // ---- composition and inverse ----------------------------------------------------------
