@@ -48,9 +48,6 @@ struct PluckerTransform {
 #endif
     return {E * m.angular, E * (m.linear - cross_3d(r, m.angular))};
   }
-  /// X (0 ; v) = (0 ; E v): a motion without angular part (such as the base's acceleration −a_g)
-  /// has no moment to shift.
-  SD_INLINE MotionVector<S> applyToLinear(const Vector3<S>& v) const { return {Vector3<S>::Zero(), E * v}; }
   /// X^-1 m = (Eᵀ ω ; Eᵀ v + r × Eᵀ ω)
   SD_INLINE MotionVector<S> applyInverse(const MotionVector<S>& m) const {
     const Vector3<S> w = E.transpose() * m.angular;

@@ -24,12 +24,6 @@ SD_INLINE T dot_axis(const Joint<S>& j, const T* x) {
   return j.axis[0] * x[0] + j.axis[1] * x[1] + j.axis[2] * x[2];
 }
 
-/// a · x.
-template <class S>
-SD_INLINE S along_axis(const Joint<S>& j, const Vector3<S>& x) {
-  return dot_axis(j, x.data());
-}
-
 /// k · a.
 template <class S>
 SD_INLINE Vector3<S> scaled_axis(const Joint<S>& j, const S& k) {
