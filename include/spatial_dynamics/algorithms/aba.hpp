@@ -52,11 +52,11 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     typename F::Rotation E;
     V r;
     F::up_transform(model, data, i, q.data(), E, r);                            // ^iX_λ into data.X_up[i]
-    if (split_gravity) gravity_split_outward(model, data, i);                    // g_i = E g_λ
-    // v_i = X v_λ + S q̇ with X m = (E ω ; E (v − r × ω)) (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
+    if (split_gravity) gravity_split_outward(model, data, i, E);                 // g_i = E g_λ
+    // v_i = X v_λ + S q̇ (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
     const MotionVector<S>& parent = data.v[model.parent[i]];
-    const V parent_w = F::load(parent.angular);
-    V w = F::times(E, parent_w), v = F::times(E, F::load(parent.linear) - F::cross(r, parent_w)), cw, cv;
+    V w = F::load(parent.angular), v = F::load(parent.linear), cw, cv;
+    vec3::motion_to_child<F>(E, r, w, v);
     if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
       const S qd_i = qd[j.idx_v];
       if (one_dof_rotates(j)) {
@@ -178,13 +178,12 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
     n += F::load(inertia_times_bias->angular);
     f += F::load(inertia_times_bias->linear);
   }
-  // pᴬ_λ += Xᵀ pᵃ = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12)
+  // pᴬ_λ += Xᵀ pᵃ (eq. 12)
   const PluckerTransform<S>& X = data.X_up[i];
-  const typename F::Rotation Et = F::transposed(F::rotation(X.E));
-  const V Et_f = F::times(Et, f);
+  vec3::force_to_parent<F>(F::transposed(F::rotation(X.E)), F::load(X.r), n, f);
   ForceVector<S>& parent = p[lambda];
-  F::store(F::load(parent.angular) + (F::times(Et, n) + F::cross(F::load(X.r), Et_f)), parent.angular);
-  F::store(F::load(parent.linear) + Et_f, parent.linear);
+  F::store(F::load(parent.angular) + n, parent.angular);
+  F::store(F::load(parent.linear) + f, parent.linear);
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
@@ -219,9 +218,8 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
     const Joint<S>& j = model.joints[i];
     const PluckerTransform<S>& X = data.X_up[i];
     const MotionVector<S>& parent = a[model.parent[i]];
-    const typename F::Rotation E = F::rotation(X.E);
-    const V parent_w = F::load(parent.angular);
-    V w = F::times(E, parent_w), l = F::times(E, F::load(parent.linear) - F::cross(F::load(X.r), parent_w));  // a' = X a_λ
+    V w = F::load(parent.angular), l = F::load(parent.linear);
+    vec3::motion_to_child<F>(F::rotation(X.E), F::load(X.r), w, l);                                           // a' = X a_λ
     if (c) {                                                                                                   //      + c
       w += F::load(c[i].angular);
       l += F::load(c[i].linear);

@@ -202,9 +202,7 @@ void mass_matrix_columns(const Model<S>& model, Data<S>& data) {
         continue;
       }
       for (int j = i, lambda = parent[i]; lambda > 0; j = lambda, lambda = parent[j]) {
-        const auto Et = F::transposed_rotation(body[j]);  // F = ^jX_λᵀ F = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
-        f = F::times(Et, f);
-        n = F::times(Et, n) + F::cross(F::translation(body[j]), f);
+        vec3::force_to_parent<F>(F::transposed_rotation(body[j]), F::translation(body[j]), n, f);  // F = ^jX_λᵀ F
         M.template projection<F>(model, data, lambda, n, f, col, ki);  // M_λi = S_λᵀ F
       }
     }

@@ -46,13 +46,14 @@ SD_INLINE void gravity_split_start(const Model<S>& model, Data<S>& data) {
   Wide::store(Wide::from(model.gravity), data.gravity_split[0].gravity);
 }
 
-/// Body i on the way out (after data.X_up[i]): g_i = E_i g_λ and its own gravity force
-/// (g_i × h_i ; −m_i g_i), where the sum over its subtree starts.
-template <class S>
-SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i) {
+/// Body i on the way out: g_i = E_i g_λ and its own gravity force (g_i × h_i ; −m_i g_i), where
+/// the sum over its subtree starts. E_i is the rotation the outward pass holds (a vec3::Form's),
+/// used from its registers rather than reloaded from data.X_up[i] (where it was just stored).
+template <class S, class Rotation>
+SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i, const Rotation& E) {
   using Wide = wide3::Form<S>;
   auto& body = data.gravity_split[i];
-  const typename Wide::Vector g = Wide::rotation(data.X_up[i].E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
+  const typename Wide::Vector g = Wide::rotation_of(E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
   Wide::store(g, body.gravity);
   Wide::store(wide3::cross(g, model.inertia[i].first_moment), body.moment);
   Wide::store(wide3::scale(S(-model.inertia[i].mass), g), body.force);
@@ -69,18 +70,18 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
   const int v = j.idx_v;
   S* out = data.tau_less_gravity.data();
-  W projected[6];  // Sᵀ f, in W
-  if (j.nv == 1) {  // the axis' dot product with n or f
+  if (j.nv == 1) {  // the axis' dot product with n or f (no array of W to initialise)
     W lanes[3];
     Wide::lanes(one_dof_rotates(j) ? n : f, lanes);
-    projected[0] = dot_axis(j, lanes);
+    out[v] = S(W(tau[v]) - dot_axis(j, lanes));
   } else {
+    W projected[6];  // Sᵀ f, in W
     W n_lanes[3], f_lanes[3];
     Wide::lanes(n, n_lanes);
     Wide::lanes(f, f_lanes);
     joint_project(j, data.joint_sin[i], data.joint_cos[i], n_lanes, f_lanes, projected);
+    for (int k = 0; k < j.nv; ++k) out[v + k] = S(W(tau[v + k]) - projected[k]);
   }
-  for (int k = 0; k < j.nv; ++k) out[v + k] = S(W(tau[v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
   const typename Wide::Rotation Et = Wide::transposed(data.X_up[i].E);

@@ -223,6 +223,14 @@ struct LanesForm {
     n = I.rotational_inertia * w + spatial_dynamics::cross(I.first_moment, v);
     f = Scalar::Constant(I.mass) * v - spatial_dynamics::cross(I.first_moment, w);
   }
+  /// v ×* I v = (ω × Ī_O ω + h × (ω × v) ; m (ω × v) − ω × (h × ω)) (eq. 29 on eq. 25, as
+  /// rigid_inertia.hpp's biasForce): without v × m v, zero but rounded to the size of m |v|².
+  static SD_LANE_INLINE void bias_force(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n,
+                                        Vector& f) {
+    const Vector w_x_v = w.cross(v);
+    n = w.cross(I.rotational_inertia * w) + spatial_dynamics::cross(I.first_moment, w_x_v);
+    f = Scalar::Constant(I.mass) * w_x_v - w.cross(spatial_dynamics::cross(I.first_moment, w));
+  }
 
   template <class Work, class Body>
   static SD_LANE_INLINE void up_transform(const Model<S>& model, Work&, int i, const Scalar* q, Body& b, Rotation& E,

@@ -37,9 +37,9 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     V r;
     F::up_transform(model, work, i, q, b, E, r);  // ^iX_λ into b, and its E and r
     // v_i = X v_λ + S q̇, a_i = X a_λ + S q̈ + c_J + v_i × S q̇ with X m = (E ω ; E (v − r × ω)) (eqs. 11, 17)
-    const V parent_w = F::load(p.w), parent_aw = F::load(p.aw);
-    V w = F::times(E, parent_w), v = F::times(E, F::load(p.v) - F::cross(r, parent_w));
-    V aw = F::times(E, parent_aw), al = F::times(E, F::load(p.al) - F::cross(r, parent_aw));
+    V w = F::load(p.w), v = F::load(p.v), aw = F::load(p.aw), al = F::load(p.al);
+    vec3::motion_to_child<F>(E, r, w, v);
+    vec3::motion_to_child<F>(E, r, aw, al);
     if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
       const S k = coupling_multiplier(j);  // q̇ = k q̇_master
       const T qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
@@ -65,12 +65,12 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     F::store(v, b.v);
     F::store(aw, b.aw);
     F::store(al, b.al);
-    // f_i = I a_i + v_i ×* I v_i (eq. 29), v ×* (n ; f) = (ω × n + v × f ; ω × f) (eq. 18)
-    V n_v, f_v, n, f;
-    F::inertia_times(model.inertia[i], w, v, n_v, f_v);
+    // f_i = I a_i + v_i ×* I v_i (eq. 29)
+    V n, f, n_bias, f_bias;
     F::inertia_times(model.inertia[i], aw, al, n, f);
-    n += F::cross(w, n_v) + F::cross(v, f_v);
-    f += F::cross(w, f_v);
+    F::bias_force(model.inertia[i], w, v, n_bias, f_bias);
+    n += n_bias;
+    f += f_bias;
     if (f_ext) {
       n -= F::load(f_ext[i].angular);
       f -= F::load(f_ext[i].linear);
@@ -86,7 +86,7 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
   for (int i = model.nbodies() - 1; i >= 1; --i) {
     const Joint<S>& j = model.joints[i];
     const auto& b = body[i];
-    const V n = F::load(b.n), f = F::load(b.f);
+    V n = F::load(b.n), f = F::load(b.f);
     if (j.nv == 1 && !accumulate) {
       const T projected = F::dot_axis(j, one_dof_rotates(j) ? n : f);
       tau[j.idx_v] = armature_at_joint ? projected + model.armature[j.idx_v] * qdd[j.idx_v] : projected;
@@ -97,11 +97,10 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     }
     const int lambda = model.parent[i];
     if (lambda == 0) continue;
-    const auto Et = F::transposed_rotation(b);
-    const V Et_f = F::times(Et, f);
+    vec3::force_to_parent<F>(F::transposed_rotation(b), F::translation(b), n, f);
     auto& parent = body[lambda];
-    F::store(F::load(parent.n) + (F::times(Et, n) + F::cross(F::translation(b), Et_f)), parent.n);
-    F::store(F::load(parent.f) + Et_f, parent.f);
+    F::store(F::load(parent.n) + n, parent.n);
+    F::store(F::load(parent.f) + f, parent.f);
   }
   if (model.has_armature && accumulate)
     for (int k = 0; k < model.nv; ++k) tau[k] += model.armature[k] * qdd[k];

@@ -282,6 +282,24 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
 };
 #endif
 
+/// A motion (ω ; v) in the parent's coordinates taken to body i's by ^iX_λ = (E, r):
+/// (E ω ; E (v − r × ω)) (eq. 11), in place. For every form F of a pass.
+template <class F>
+SD_INLINE void motion_to_child(const typename F::Rotation& E, const typename F::Vector& r, typename F::Vector& w,
+                               typename F::Vector& v) {
+  v = F::times(E, v - F::cross(r, w));
+  w = F::times(E, w);
+}
+
+/// A force (n ; f) on body i taken to its parent's coordinates by ^iX_λᵀ, given Eᵀ:
+/// (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12), in place.
+template <class F, class TransposedRotation>
+SD_INLINE void force_to_parent(const TransposedRotation& Et, const typename F::Vector& r, typename F::Vector& n,
+                               typename F::Vector& f) {
+  f = F::times(Et, f);
+  n = F::times(Et, n) + F::cross(r, f);
+}
+
 /// The choice, for S.
 template <class S>
 struct FormOf {

@@ -87,6 +87,9 @@ struct Form {
   using Rotation = ScalarWideRotation<S>;
   static SD_INLINE Rotation rotation(const Matrix3<S>& E) { return {E}; }
   static SD_INLINE Rotation transposed(const Matrix3<S>& E) { return {E.transpose()}; }
+  /// The rotation a pass on vec3::Form<S> holds (its member E), in this form.
+  template <class FormRotation>
+  static SD_INLINE Rotation rotation_of(const FormRotation& R) { return {R.E}; }
   static SD_INLINE Vector from(const Vector3<S>& v) { return {{WiderScalar<S>(v[0]), WiderScalar<S>(v[1]), WiderScalar<S>(v[2])}}; }
   static SD_INLINE Vector load(const WideVector3Storage<S>& s) {
     Vector v;
@@ -119,6 +122,8 @@ struct Form<double> {
   using Rotation = packed3::Columns;
   static SD_INLINE Rotation rotation(const Matrix3<double>& E) { return packed3::columns(E); }
   static SD_INLINE Rotation transposed(const Matrix3<double>& E) { return packed3::transposed_columns(E); }
+  /// The rotation a pass on vec3::Form<double> holds: the same columns.
+  static SD_INLINE const Rotation& rotation_of(const Rotation& R) { return R; }
   static SD_INLINE Vector from(const Vector3<double>& v) { return {packed3::load3(v), packed3::Packed3{}}; }
   static SD_INLINE Vector load(const WideVector3Storage<double>& s) { return {packed3::load(s.hi), packed3::load(s.lo)}; }
   static SD_INLINE void store(const Vector& v, WideVector3Storage<double>& s) {
