@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "allocation_counter.hpp"
+#include "spatial_dynamics/algorithms/aba_refined.hpp"
 #include "spatial_dynamics/algorithms/rnea_batch.hpp"
 #include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
@@ -453,4 +454,107 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
   EXPECT_LE(worst_downdated_product, 1e-14);
   std::printf("packed articulated inertia: step %.1e, sum %.1e, product %.1e, downdated product %.1e relative to the "
               "6x6 products\n", worst_step, worst_add, worst_product, worst_downdated_product);
+}
+
+// Rotations about a coordinate axis (packed3.hpp's AxisRotation, rotation_about_axis.hpp): their
+// products with a vector, with a double-double vector and the articulated inertia's transform
+// Xᵀ Iᴬ X against the same products with E's nine coefficients, E = coordinate_rotation(e_k, θ).
+TEST(PackedPaths, AxisRotationsAgainstMatrices) {
+  SKIP_WITHOUT_AVX2_FMA();
+  using namespace sd::packed3;
+  using Matrix6 = sd::Matrix6<double>;
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst_vector = 0, worst_wide = 0, worst_step = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int axis = trial % 3, m = (axis + 1) % 3, n = (axis + 2) % 3;
+    const double angle = 3 * u(rng), s = std::sin(angle), c = std::cos(angle);
+    Eigen::Matrix3d E = Eigen::Matrix3d::Zero();  // rx, ry, rz (RBDA Table 2.2) with its exact 0 and 1
+    E(axis, axis) = 1;
+    E(m, m) = E(n, n) = c;
+    E(m, n) = s;
+    E(n, m) = -s;
+    ASSERT_LE((E - sd::coordinate_rotation(Eigen::Vector3d(Eigen::Vector3d::Unit(axis)), angle)).norm(), 1e-15);
+    const sd::PluckerTransform<double> X(E, Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Eigen::Vector3d y(u(rng), u(rng), u(rng));
+    const Eigen::Vector3d Ey = X.E * y, Ety = X.E.transpose() * y;
+    const PackedDoubleDouble wide_y{load3(y), make(u(rng), u(rng), u(rng)) * 1e-17};
+    const sd::Matrix6<double> L = Matrix6::NullaryExpr([&] { return u(rng); });
+    const Matrix6 Ia = L * L.transpose() + 0.1 * Matrix6::Identity(), start = Matrix6::Identity();
+    const Matrix6 expected = start + X.toMotionMatrix().transpose() * Ia * X.toMotionMatrix();
+    with_axis(axis, [&](auto k) {
+      const AxisRotation<decltype(k)::value> rotation(s, c);
+      worst_vector = std::max({worst_vector, (to_vector3(rotation.times(load3(y))) - Ey).norm() / y.norm(),
+                               (to_vector3(rotation.transposed_times(load3(y))) - Ety).norm() / y.norm()});
+      for (bool transposed : {false, true}) {
+        const PackedDoubleDouble by_lanes = times(rotation, wide_y, transposed);
+        const PackedDoubleDouble by_columns = transposed ? transposed_columns(X.E) * wide_y : columns(X.E) * wide_y;
+        for (int lane = 0; lane < 3; ++lane) {  // the two products' difference, in double-double
+          const long double difference = (static_cast<long double>(by_lanes.hi[lane]) - by_columns.hi[lane]) +
+                                         (static_cast<long double>(by_lanes.lo[lane]) - by_columns.lo[lane]);
+          worst_wide = std::max(worst_wide, static_cast<double>(std::fabs(difference)) / y.norm());
+        }
+      }
+    });
+    Matrix6 out = start;
+    add_transformed(X.E, X.r, load_blocks(Ia), out, axis, s, c);
+    worst_step = std::max(worst_step, (out - expected).norm() / expected.norm());
+  }
+  EXPECT_LE(worst_vector, 2.3e-16);
+  EXPECT_LE(worst_wide, 1e-30);
+  EXPECT_LE(worst_step, 1e-14);
+  std::printf("rotations about an axis: vector %.1e, double-double %.1e, Xᵀ Iᴬ X %.1e relative to E's coefficients\n",
+              worst_vector, worst_wide, worst_step);
+}
+
+// The ABA with the rotations' structure (Data::up_rotation_axis) on a tree whose revolute joints
+// about x, y and z have tree transforms without rotation (and one with), fixed and floating:
+// against the same call with the structure cleared (every E by its coefficients) and against the
+// float128 reference; the refined forward dynamics, which solves on the same factorisation, too.
+TEST(PackedPaths, AbaWithAxisRotations) {
+  SKIP_WITHOUT_AVX2_FMA();
+  const char* const urdf = R"(<robot name='axes'>
+  <link name='base'><inertial><mass value='2.0'/><inertia ixx='0.05' ixy='0' ixz='0' iyy='0.06' iyz='0' izz='0.07'/></inertial></link>
+  <link name='a'><inertial><mass value='1.2'/><origin xyz='0.1 0.02 -0.03'/><inertia ixx='0.02' ixy='0.001' ixz='-0.002' iyy='0.03' iyz='0.003' izz='0.025'/></inertial></link>
+  <link name='b'><inertial><mass value='0.9'/><origin xyz='-0.04 0.1 0.01'/><inertia ixx='0.011' ixy='-0.001' ixz='0.0005' iyy='0.014' iyz='0.001' izz='0.009'/></inertial></link>
+  <link name='c'><inertial><mass value='1.1'/><origin xyz='0.02 -0.03 0.12'/><inertia ixx='0.015' ixy='0.002' ixz='0' iyy='0.012' iyz='-0.001' izz='0.017'/></inertial></link>
+  <link name='d'><inertial><mass value='0.7'/><origin xyz='0.05 0.05 0.05'/><inertia ixx='0.006' ixy='0' ixz='0.001' iyy='0.007' iyz='0' izz='0.008'/></inertial></link>
+  <link name='e'><inertial><mass value='0.6'/><origin xyz='0 0.03 -0.02'/><inertia ixx='0.004' ixy='0.0005' ixz='0' iyy='0.005' iyz='0.0002' izz='0.006'/></inertial></link>
+  <joint name='z1' type='continuous'><parent link='base'/><child link='a'/><origin xyz='0 0 0.1'/><axis xyz='0 0 1'/></joint>
+  <joint name='y2' type='continuous'><parent link='a'/><child link='b'/><origin xyz='0.2 0 0'/><axis xyz='0 1 0'/></joint>
+  <joint name='x3' type='continuous'><parent link='b'/><child link='c'/><origin xyz='0 0.15 0.05'/><axis xyz='1 0 0'/></joint>
+  <joint name='y4' type='continuous'><parent link='c'/><child link='d'/><origin xyz='0.1 0 0' rpy='0.3 0 0'/><axis xyz='0 1 0'/></joint>
+  <joint name='x5' type='continuous'><parent link='a'/><child link='e'/><origin xyz='0 -0.1 0'/><axis xyz='1 0 0'/></joint>
+</robot>)";
+  for (const bool floating : {false, true}) {
+    sd::ModelBuildOptions options;
+    options.floating_base = floating;
+    const sd::Model<double> model = sd::build_model_from_urdf_string(urdf, options);
+    sd::Data<double> data(model), by_coefficients(model);
+    int about_axes = 0;
+    for (int i = 1; i < model.nbodies(); ++i) about_axes += data.up_rotation_axis[i] >= 0;
+    ASSERT_EQ(about_axes, 4) << "floating " << floating;
+    std::fill(by_coefficients.up_rotation_axis.begin(), by_coefficients.up_rotation_axis.end(), -1);
+    const sd::Model<sd::Quad> model_q = model.cast<sd::Quad>();
+    sd::Data<sd::Quad> data_q(model_q);
+    sd::RefinementWorkspace<double> refinement(model);
+    std::mt19937 rng(59);
+    double worst_difference = 0, worst_error = 0, worst_refined = 0;
+    for (int k = 0; k < 200; ++k) {
+      const VectorXd q = sd_test::random_configuration(model, rng), qd = sd_test::random_vector(model.nv, rng),
+                     tau = sd_test::random_vector(model.nv, rng);
+      const VectorXd qdd = sd::aba(model, data, q, qd, tau);
+      const VectorXd expected = sd::aba(model, by_coefficients, q, qd, tau);
+      const sd::VectorX<sd::Quad> reference = sd::aba(model_q, data_q, sd::to_quad(q), sd::to_quad(qd), sd::to_quad(tau));
+      worst_difference = std::max(worst_difference, (qdd - expected).norm() / expected.norm());
+      worst_error = std::max(worst_error, sd::relative_error_to(qdd, reference));
+      const VectorXd refined = sd::aba_refined(model, data, refinement, q, qd, tau);
+      worst_refined = std::max(worst_refined, sd::relative_error_to(refined, reference));
+    }
+    EXPECT_LE(worst_difference, 1e-14) << "floating " << floating;
+    EXPECT_LE(worst_error, 1e-14) << "floating " << floating;
+    EXPECT_LE(worst_refined, 1e-15) << "floating " << floating;
+    std::printf("ABA with rotations about axes (%s): %.1e from the same by E's coefficients, %.1e from float128, "
+                "refined %.1e\n", floating ? "floating" : "fixed", worst_difference, worst_error, worst_refined);
+  }
 }

@@ -56,7 +56,7 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     // v_i = X v_λ + S q̇ (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
     const MotionVector<S>& parent = data.v[model.parent[i]];
     V w = F::load(parent.angular), v = F::load(parent.linear), cw, cv;
-    vec3::motion_to_child<F>(E, r, w, v);
+    vec3::motion_to_child<F>(body_up_rotation(data, i), E, r, w, v);
     if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
       const S qd_i = qd[j.idx_v];
       if (one_dof_rotates(j)) {
@@ -141,7 +141,8 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   data.U[i].col(0) = U;
   data.D_inv[i](0, 0) = S(1) / D;
   if (lambda == 0) return ForceVector<S>::Zero();
-  return data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.c[i], data.IA[lambda]);
+  return data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.c[i], data.IA[lambda],
+                                                 body_up_rotation(data, i));
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -180,7 +181,7 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
   }
   // pᴬ_λ += Xᵀ pᵃ (eq. 12)
   const PluckerTransform<S>& X = data.X_up[i];
-  vec3::force_to_parent<F>(F::transposed(F::rotation(X.E)), F::load(X.r), n, f);
+  vec3::force_to_parent<F>(body_up_rotation(data, i), X.E, F::load(X.r), n, f);
   ForceVector<S>& parent = p[lambda];
   F::store(F::load(parent.angular) + n, parent.angular);
   F::store(F::load(parent.linear) + f, parent.linear);
@@ -219,7 +220,7 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
     const PluckerTransform<S>& X = data.X_up[i];
     const MotionVector<S>& parent = a[model.parent[i]];
     V w = F::load(parent.angular), l = F::load(parent.linear);
-    vec3::motion_to_child<F>(F::rotation(X.E), F::load(X.r), w, l);                                           // a' = X a_λ
+    vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), w, l);  // a' = X a_λ
     if (c) {                                                                                                   //      + c
       w += F::load(c[i].angular);
       l += F::load(c[i].linear);

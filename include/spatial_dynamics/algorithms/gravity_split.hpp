@@ -53,7 +53,8 @@ template <class S, class Rotation>
 SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i, const Rotation& E) {
   using Wide = wide3::Form<S>;
   auto& body = data.gravity_split[i];
-  const typename Wide::Vector g = Wide::rotation_of(E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
+  const typename Wide::Vector g =
+      Wide::rotate(body_up_rotation(data, i), Wide::rotation_of(E), Wide::load(data.gravity_split[model.parent[i]].gravity));
   Wide::store(g, body.gravity);
   Wide::store(wide3::cross(g, model.inertia[i].first_moment), body.moment);
   Wide::store(wide3::scale(S(-model.inertia[i].mass), g), body.force);
@@ -84,10 +85,10 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   }
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const typename Wide::Rotation Et = Wide::transposed(data.X_up[i].E);
-  const typename Wide::Vector Et_f = Et * f;
+  typename Wide::Vector Et_n, Et_f;
+  Wide::transposed_times(body_up_rotation(data, i), data.X_up[i].E, n, f, Et_n, Et_f);
   auto& parent = data.gravity_split[lambda];
-  Wide::store(Wide::load(parent.moment) + (Et * n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
+  Wide::store(Wide::load(parent.moment) + (Et_n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
   Wide::store(Wide::load(parent.force) + Et_f, parent.force);
 }
 

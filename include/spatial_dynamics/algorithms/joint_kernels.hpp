@@ -151,6 +151,13 @@ SD_INLINE void body_up_transform(const Model<S>& model, const Data<S>& data, int
   }
 }
 
+/// What is known of ^iX_λ(i)'s rotation beyond its coefficients (Data::up_rotation_axis); the
+/// joint angle's sin and cos as body_up_transform reads them.
+template <class S>
+SD_INLINE RotationAboutAxis<S> body_up_rotation(const Data<S>& data, int i) {
+  return {data.up_rotation_axis[i], data.joint_sin[i], data.joint_cos[i]};
+}
+
 /// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
 template <class S>
 SD_INLINE MotionVector<S> body_joint_motion(const Model<S>& model, const Data<S>& data, int i, const S* qd) {

@@ -73,6 +73,15 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   static SD_INLINE Rotation rotation(const Matrix3<S>& M) { return {M}; }
   static SD_INLINE Rotation transposed(const Rotation& R) { return {R.E.transpose()}; }
   static SD_INLINE Vector column(const Rotation& R, int k) { return R.E.col(k); }
+  /// x ← E x and y ← E y; x ← Eᵀ x and y ← Eᵀ y for E in memory (E's structure, `about`, unused here).
+  static SD_INLINE void times_pair(const RotationAboutAxis<S>&, const Rotation& E, Vector& x, Vector& y) {
+    x = E.E * x;
+    y = E.E * y;
+  }
+  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>&, const Matrix3<S>& E, Vector& x, Vector& y) {
+    x = E.transpose() * x;
+    y = E.transpose() * y;
+  }
   template <class Storage>
   static SD_INLINE void store_columns(const Matrix3<S>& M, Storage& c0, Storage& c1, Storage& c2) {
     store(Vector(M.col(0)), c0);
@@ -169,6 +178,35 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
     return T;
   }
   static SD_INLINE Vector column(const Rotation& R, int k) { return k == 0 ? R.c0 : k == 1 ? R.c1 : R.c2; }
+  /// x ← E x and y ← E y: by the two lanes E mixes where `about` tells that it rotates about a
+  /// coordinate axis (packed3.hpp's AxisRotation), else by E's columns.
+  static SD_INLINE void times_pair(const RotationAboutAxis<S>& about, const Rotation& E, Vector& x, Vector& y) {
+    if (about.axis < 0) {
+      x = times(E, x);
+      y = times(E, y);
+      return;
+    }
+    packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
+      const packed3::AxisRotation<decltype(k)::value> rotation(about.s, about.c);
+      x = rotation.times(x);
+      y = rotation.times(y);
+    });
+  }
+  /// x ← Eᵀ x and y ← Eᵀ y for E in memory, as above (E's columns transposed in registers).
+  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>& about, const Matrix3<S>& E, Vector& x,
+                                              Vector& y) {
+    if (about.axis < 0) {
+      const Rotation Et = transposed(rotation(E));
+      x = times(Et, x);
+      y = times(Et, y);
+      return;
+    }
+    packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
+      const packed3::AxisRotation<decltype(k)::value> rotation(about.s, about.c);
+      x = rotation.transposed_times(x);
+      y = rotation.transposed_times(y);
+    });
+  }
   static SD_INLINE void store_columns(const Matrix3<S>& M, Packed3Storage& c0, Packed3Storage& c1, Packed3Storage& c2) {
     const Rotation C = packed3::columns(M);
     store(C.c0, c0);
@@ -298,6 +336,22 @@ SD_INLINE void force_to_parent(const TransposedRotation& Et, const typename F::V
                                typename F::Vector& f) {
   f = F::times(Et, f);
   n = F::times(Et, n) + F::cross(r, f);
+}
+
+/// As above, E's structure known as far as `about` tells (the ABA's passes, Data::up_rotation_axis).
+template <class F>
+SD_INLINE void motion_to_child(const RotationAboutAxis<typename F::Scalar>& about, const typename F::Rotation& E,
+                               const typename F::Vector& r, typename F::Vector& w, typename F::Vector& v) {
+  v -= F::cross(r, w);
+  F::times_pair(about, E, w, v);
+}
+
+/// As above for ^iX_λ = (E, r) with E in memory and its structure known as far as `about` tells.
+template <class F>
+SD_INLINE void force_to_parent(const RotationAboutAxis<typename F::Scalar>& about, const Matrix3<typename F::Scalar>& E,
+                               const typename F::Vector& r, typename F::Vector& n, typename F::Vector& f) {
+  F::transposed_times_pair(about, E, n, f);
+  n += F::cross(r, f);
 }
 
 /// The choice, for S.

@@ -70,6 +70,10 @@ struct Data {
   // of their own and coordinate idx_v of body k − 1 plus one.
   std::vector<S> base_origin_and_axis;
   std::vector<int> revolute_run_start;
+  // Per body, the coordinate axis (0–2) of a revolute joint whose tree transform does not rotate
+  // (E_tree = 1, so that ^iX_λ's E is the joint's rx, ry or rz, RBDA Table 2.2), else −1: the ABA's
+  // products with E then take the rotation's structure (plucker_transform.hpp's RotationAboutAxis).
+  std::vector<int> up_rotation_axis;
   // Whether crba carries the columns to the ancestors in base coordinates: when the bodies have
   // four or more moving ancestors on average, in runs of two or more, where that is cheaper than
   // one transform per pair.
@@ -111,6 +115,7 @@ struct Data {
         crba(model.nbodies()),
         base_origin_and_axis(6 * (model.nbodies() + kWidestLanes<S>), S(0)),
         revolute_run_start(model.nbodies(), 0),
+        up_rotation_axis(model.nbodies(), -1),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
@@ -128,6 +133,8 @@ struct Data {
       const bool extends = revolute && i > 1 && model.parent[i] == i - 1 && revolute_run_start[i - 1] > 0 &&
                            j.idx_v == model.joints[i - 1].idx_v + 1;
       revolute_run_start[i] = extends ? revolute_run_start[i - 1] : (revolute ? i : 0);
+      if (revolute && j.axis_kind != AxisKind::General && model.X_tree[i].E == Matrix3<S>::Identity())
+        up_rotation_axis[i] = static_cast<int>(j.axis_kind);
     }
     // Base coordinates pay off from 4 moving ancestors per body on average, where those form runs
     // of two or more bodies on average (the runs are carried several at a time, crba_base_carry.hpp;

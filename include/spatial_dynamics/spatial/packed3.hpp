@@ -138,6 +138,46 @@ SD_INLINE Columns transposed_columns(const Matrix3<double>& M) {
   return T;
 }
 
+/// A rotation E about coordinate axis k (RBDA Table 2.2's rx, ry, rz at angle θ, s = sin θ,
+/// c = cos θ) on packed lanes: E y = cv ∘ y + sv ∘ swap(y) and Eᵀ y = cv ∘ y − sv ∘ swap(y), where
+/// swap exchanges the two lanes the rotation mixes, m = k + 1 and n = k + 2 (mod 3); E's column m is
+/// (c e_m − s e_n), its column n (s e_m + c e_n).
+template <int axis>
+struct AxisRotation {
+  static constexpr int m = (axis + 1) % 3, n = (axis + 2) % 3;
+  Packed3 cv, sv;
+  AxisRotation(double s, double c) {
+    if constexpr (axis == 0) {
+      cv = Packed3{1, c, c, 1};
+      sv = Packed3{0, s, -s, 0};
+    } else if constexpr (axis == 1) {
+      cv = Packed3{c, 1, c, 1};
+      sv = Packed3{-s, 0, s, 0};
+    } else {
+      cv = Packed3{c, c, 1, 1};
+      sv = Packed3{s, -s, 0, 0};
+    }
+  }
+  static SD_INLINE Packed3 swap(Packed3 y) {
+    if constexpr (axis == 0) return __builtin_shuffle(y, LaneIndex{0, 2, 1, 3});
+    else if constexpr (axis == 1) return __builtin_shuffle(y, LaneIndex{2, 1, 0, 3});
+    else return __builtin_shuffle(y, LaneIndex{1, 0, 2, 3});
+  }
+  SD_INLINE Packed3 times(Packed3 y) const { return cv * y + sv * swap(y); }
+  SD_INLINE Packed3 transposed_times(Packed3 y) const { return cv * y - sv * swap(y); }
+};
+
+/// fn(std::integral_constant<int, axis>()) for axis 0, 1 or 2, known at run time: the branch
+/// that selects a rotation's compiled form once, outside its products.
+template <class Fn>
+SD_INLINE void with_axis(int axis, Fn&& fn) {
+  switch (axis) {
+    case 0: fn(std::integral_constant<int, 0>()); return;
+    case 1: fn(std::integral_constant<int, 1>()); return;
+    default: fn(std::integral_constant<int, 2>()); return;
+  }
+}
+
 }  // namespace packed3
 #endif
 

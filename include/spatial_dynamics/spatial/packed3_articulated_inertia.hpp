@@ -76,6 +76,17 @@ SD_INLINE void rotate_transposed(const double* E, Packed3 (&M)[3]) {
   M[2] = times_column(rows, E + 6);
 }
 
+/// Eᵀ M E by its columns for E a rotation about a coordinate axis (packed3.hpp's AxisRotation):
+/// M E mixes M's columns m and n, Eᵀ two lanes of each column.
+template <int axis>
+SD_INLINE void rotate_about_axis(const AxisRotation<axis>& E, double s, double c, Packed3 (&M)[3]) {
+  constexpr int m = AxisRotation<axis>::m, n = AxisRotation<axis>::n;
+  const Packed3 Mm = M[m], Mn = M[n];
+  M[m] = splat(c) * Mm - splat(s) * Mn;  // M E: column m is M (c e_m − s e_n), column n M (s e_m + c e_n)
+  M[n] = splat(s) * Mm + splat(c) * Mn;
+  for (Packed3& column : M) column = E.transposed_times(column);
+}
+
 /// One of the first three columns of a 6×6 matrix += (top ; bottom), or = with `add` false:
 /// rows 0–3, then rows 4–5.
 SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom, bool add = true) {
@@ -123,14 +134,29 @@ SD_INLINE void store_rigid(double mass, const Vector3<double>& first_moment, con
 
 /// out += Xᵀ [A B; Bᵀ C] X for X = (E, r) (plucker_transform.hpp): with A' = Eᵀ A E, B' = Eᵀ B E,
 /// C' = Eᵀ C E and G = B' + r×C', the blocks [A' − G r× + r×B'ᵀ, G ; Gᵀ, C'] — column k of G r×
-/// is G (r × e_k), column k of r×B'ᵀ is r × (row k of B').
+/// is G (r × e_k), column k of r×B'ᵀ is r × (row k of B'). With `axis` 0–2, E is the rotation
+/// about that coordinate axis by the angle of sine s and cosine c, and its three products take the
+/// lanes it mixes (rotate_about_axis) instead of E's nine coefficients.
 SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& r, InertiaBlocks I,
-                               Matrix6<double>& out) {
-  rotate_transposed(E.data(), I.A);  // A' (symmetric)
-  rotate_transposed(E.data(), I.C);  // C'
-  rotate_transposed(E.data(), I.B);  // B'ᵀ
-  Packed3 B0, B1, B2;                // B'
-  transpose(I.B[0], I.B[1], I.B[2], B0, B1, B2);
+                               Matrix6<double>& out, int axis = -1, double s = 0, double c = 1) {
+  Packed3 B0, B1, B2;  // B'; I.B then holds B'ᵀ
+  if (axis < 0) {
+    rotate_transposed(E.data(), I.A);  // A' (symmetric)
+    rotate_transposed(E.data(), I.C);  // C'
+    rotate_transposed(E.data(), I.B);  // B'ᵀ
+    transpose(I.B[0], I.B[1], I.B[2], B0, B1, B2);
+  } else {
+    with_axis(axis, [&](auto k) SD_INLINE_LAMBDA {
+      const AxisRotation<decltype(k)::value> rotation(s, c);
+      rotate_about_axis(rotation, s, c, I.A);  // A'
+      rotate_about_axis(rotation, s, c, I.C);  // C'
+      rotate_about_axis(rotation, s, c, I.B);  // B'
+    });
+    B0 = I.B[0];
+    B1 = I.B[1];
+    B2 = I.B[2];
+    transpose(B0, B1, B2, I.B[0], I.B[1], I.B[2]);
+  }
   const Packed3 rr = load3(r);
   const Packed3 G0 = B0 + cross(rr, I.C[0]), G1 = B1 + cross(rr, I.C[1]), G2 = B2 + cross(rr, I.C[2]);
   Packed3 Gt0, Gt1, Gt2;  // rows of G

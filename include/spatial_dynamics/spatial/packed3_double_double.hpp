@@ -63,6 +63,14 @@ SD_INLINE PackedDoubleDouble cross(const PackedDoubleDouble& a, Packed3 b) {
 /// a × b for double a and double-double b: −(b × a).
 SD_INLINE PackedDoubleDouble cross(Packed3 a, const PackedDoubleDouble& b) { return -cross(b, a); }
 
+/// E y, or Eᵀ y with `transposed`, for E a rotation about a coordinate axis (packed3.hpp's
+/// AxisRotation): cv ∘ y ± sv ∘ swap(y), each product with its error.
+template <int axis>
+SD_INLINE PackedDoubleDouble times(const AxisRotation<axis>& E, const PackedDoubleDouble& y, bool transposed) {
+  const PackedDoubleDouble swapped{E.swap(y.hi), E.swap(y.lo)};
+  return scale(E.cv, y) + scale(transposed ? -E.sv : E.sv, swapped);
+}
+
 }  // namespace packed3
 }  // namespace spatial_dynamics
 

@@ -13,6 +13,7 @@
 #include "spatial_dynamics/spatial/packed3.hpp"
 #include "spatial_dynamics/spatial/packed3_articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
+#include "spatial_dynamics/spatial/rotation_about_axis.hpp"
 
 namespace spatial_dynamics {
 
@@ -175,9 +176,12 @@ struct PluckerTransform {
 
   /// out += Xᵀ Iᵃ X for Iᵃ = Iᴬ − U D⁻¹ Uᵀ at a 1-DoF joint (U = Iᴬ S, RBDA Table 7.1), and
   /// Iᵃ c returned: the ABA's inward step at such a joint, without forming Iᵃ in memory.
+  /// `about` may tell that E is a rotation about a coordinate axis (the packed products then take
+  /// its structure).
   SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U,
                                                       const S& D_inv, const MotionVector<S>& c,
-                                                      ArticulatedInertia<S>& out) const {
+                                                      ArticulatedInertia<S>& out,
+                                                      const RotationAboutAxis<S>& about = {}) const {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<S, double>::value) {
       using namespace packed3;
@@ -186,12 +190,13 @@ struct PluckerTransform {
       times_motion(blocks, c.angular.data(), c.linear.data(), top, bottom);
       const Packed3 u_w = load(U.data()), u_v = load_after(U.data() + 2);
       subtract_rank_one(blocks, u_w, u_v, D_inv);
-      add_transformed(E, r, blocks, out.matrix);
+      add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c);
       const Packed3 uc = u_w * load3(c.angular) + u_v * load3(c.linear);
       const Packed3 k = splat(D_inv * (uc[0] + uc[1] + uc[2]));                // D⁻¹ Uᵀ c
       return {to_vector3(top - u_w * k), to_vector3(bottom - u_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
     }
 #endif
+    static_cast<void>(about);  // the Eigen products take E's coefficients
     applyInverseAdd(ArticulatedInertia<S>(Ia.matrix - U * (D_inv * U.transpose())), out);
     return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
   }

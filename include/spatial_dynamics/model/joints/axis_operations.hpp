@@ -110,16 +110,14 @@ SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c,
 SD_INLINE void packed_rotate_about_joint_axis(const Joint<double>& j, double s, double c, packed3::Packed3& c0,
                                               packed3::Packed3& c1, packed3::Packed3& c2) {
   using namespace packed3;
-  const auto rotate_rows = [&](const Packed3& cv, const Packed3& sv, const LaneIndex& swap) SD_INLINE_LAMBDA {
-    c0 = cv * c0 + sv * __builtin_shuffle(c0, swap);
-    c1 = cv * c1 + sv * __builtin_shuffle(c1, swap);
-    c2 = cv * c2 + sv * __builtin_shuffle(c2, swap);
-  };
-  switch (j.axis_kind) {
-    case AxisKind::X: rotate_rows(Packed3{1, c, c, 1}, Packed3{0, s, -s, 0}, LaneIndex{0, 2, 1, 3}); return;
-    case AxisKind::Y: rotate_rows(Packed3{c, 1, c, 1}, Packed3{-s, 0, s, 0}, LaneIndex{2, 1, 0, 3}); return;
-    case AxisKind::Z: rotate_rows(Packed3{c, c, 1, 1}, Packed3{s, -s, 0, 0}, LaneIndex{1, 0, 2, 3}); return;
-    case AxisKind::General: break;
+  if (j.axis_kind != AxisKind::General) {
+    with_axis(static_cast<int>(j.axis_kind), [&](auto axis) SD_INLINE_LAMBDA {
+      const AxisRotation<decltype(axis)::value> E_J(s, c);
+      c0 = E_J.times(c0);
+      c1 = E_J.times(c1);
+      c2 = E_J.times(c2);
+    });
+    return;
   }
   // rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ, by its rows r0..r2.
   const Vector3<double>& a = j.axis;
