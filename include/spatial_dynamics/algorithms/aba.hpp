@@ -181,7 +181,7 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
   }
   // pᴬ_λ += Xᵀ pᵃ (eq. 12)
   const PluckerTransform<S>& X = data.X_up[i];
-  vec3::force_to_parent<F>(body_up_rotation(data, i), X.E, F::load(X.r), n, f);
+  vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), n, f);
   ForceVector<S>& parent = p[lambda];
   F::store(F::load(parent.angular) + n, parent.angular);
   F::store(F::load(parent.linear) + f, parent.linear);

@@ -202,6 +202,20 @@ struct LanesForm {
   static SD_LANE_INLINE Vector times(const Rotation& R, const Vector& x) { return *R.E * x; }
   static SD_LANE_INLINE Vector times(const TransposedRotation& R, const Vector& x) { return R.E->transposeTimes(x); }
   static SD_LANE_INLINE Vector cross(const Vector& a, const Vector& b) { return a.cross(b); }
+  /// The lanes' states each rotate by an angle of their own: every E is taken by its
+  /// coefficients (no RotationAboutAxis), and its transpose too.
+  struct NoRotationStructure {
+    friend NoRotationStructure transposed(NoRotationStructure none) { return none; }
+  };
+  template <class Work>
+  static SD_LANE_INLINE NoRotationStructure up_rotation(const Work&, int) {
+    return {};
+  }
+  template <class R>
+  static SD_LANE_INLINE void times_pair(NoRotationStructure, const R& E, Vector& x, Vector& y) {
+    x = times(E, x);
+    y = times(E, y);
+  }
   template <class Body>
   static SD_LANE_INLINE TransposedRotation transposed_rotation(const Body& b) {
     return {&b.X.E};

@@ -38,8 +38,9 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     F::up_transform(model, work, i, q, b, E, r);  // ^iX_λ into b, and its E and r
     // v_i = X v_λ + S q̇, a_i = X a_λ + S q̈ + c_J + v_i × S q̇ with X m = (E ω ; E (v − r × ω)) (eqs. 11, 17)
     V w = F::load(p.w), v = F::load(p.v), aw = F::load(p.aw), al = F::load(p.al);
-    vec3::motion_to_child<F>(E, r, w, v);
-    vec3::motion_to_child<F>(E, r, aw, al);
+    const auto about = F::up_rotation(work, i);  // E's structure (Data::up_rotation_axis)
+    vec3::motion_to_child<F>(about, E, r, w, v);
+    vec3::motion_to_child<F>(about, E, r, aw, al);
     if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
       const S k = coupling_multiplier(j);  // q̇ = k q̇_master
       const T qd_i = k * qd[j.idx_v], qdd_i = k * qdd[j.idx_v];
@@ -97,7 +98,7 @@ SD_INLINE void rnea_passes(const Model<S>& model, Work& work, const typename F::
     }
     const int lambda = model.parent[i];
     if (lambda == 0) continue;
-    vec3::force_to_parent<F>(F::transposed_rotation(b), F::translation(b), n, f);
+    vec3::force_to_parent<F>(transposed(F::up_rotation(work, i)), F::transposed_rotation(b), F::translation(b), n, f);
     auto& parent = body[lambda];
     F::store(F::load(parent.n) + n, parent.n);
     F::store(F::load(parent.f) + f, parent.f);

@@ -29,6 +29,8 @@ struct OneStateJointTerms {
     aw = F::load(aJ.angular);
     al = F::load(aJ.linear);
   }
+  /// What is known of ^iX_λ(i)'s rotation (joint_kernels.hpp's body_up_rotation).
+  static SD_INLINE RotationAboutAxis<S> up_rotation(const Data<S>& data, int i) { return body_up_rotation(data, i); }
   template <class V>
   static SD_INLINE void store_force(const Model<S>& model, const Data<S>& data, int i, const V& n, const V& f, S* tau,
                                     bool accumulate) {
@@ -73,12 +75,32 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   static SD_INLINE Rotation rotation(const Matrix3<S>& M) { return {M}; }
   static SD_INLINE Rotation transposed(const Rotation& R) { return {R.E.transpose()}; }
   static SD_INLINE Vector column(const Rotation& R, int k) { return R.E.col(k); }
-  /// x ← E x and y ← E y; x ← Eᵀ x and y ← Eᵀ y for E in memory (E's structure, `about`, unused here).
-  static SD_INLINE void times_pair(const RotationAboutAxis<S>&, const Rotation& E, Vector& x, Vector& y) {
+  /// E x for E the rotation about a coordinate axis `about` describes: lanes m = k + 1 and
+  /// n = k + 2 (mod 3) become (c x_m + s x_n, c x_n − s x_m) (RBDA Table 2.2), lane k stays.
+  static SD_INLINE void rotate_about_axis(const RotationAboutAxis<S>& about, Vector& x) {
+    const int m = (about.axis + 1) % 3, n = (about.axis + 2) % 3;
+    const S x_m = x[m], x_n = x[n];
+    x[m] = about.c * x_m + about.s * x_n;
+    x[n] = about.c * x_n - about.s * x_m;
+  }
+  /// x ← E x and y ← E y; x ← Eᵀ x and y ← Eᵀ y for E in memory: by the two coordinates E mixes
+  /// where `about` tells that it rotates about a coordinate axis, else by E's coefficients.
+  static SD_INLINE void times_pair(const RotationAboutAxis<S>& about, const Rotation& E, Vector& x, Vector& y) {
+    if (about.axis >= 0) {
+      rotate_about_axis(about, x);
+      rotate_about_axis(about, y);
+      return;
+    }
     x = E.E * x;
     y = E.E * y;
   }
-  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>&, const Matrix3<S>& E, Vector& x, Vector& y) {
+  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>& about, const Matrix3<S>& E, Vector& x,
+                                              Vector& y) {
+    if (about.axis >= 0) {
+      rotate_about_axis(spatial_dynamics::transposed(about), x);
+      rotate_about_axis(spatial_dynamics::transposed(about), y);
+      return;
+    }
     x = E.transpose() * x;
     y = E.transpose() * y;
   }
@@ -181,30 +203,30 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   /// x ← E x and y ← E y: by the two lanes E mixes where `about` tells that it rotates about a
   /// coordinate axis (packed3.hpp's AxisRotation), else by E's columns.
   static SD_INLINE void times_pair(const RotationAboutAxis<S>& about, const Rotation& E, Vector& x, Vector& y) {
-    if (about.axis < 0) {
-      x = times(E, x);
-      y = times(E, y);
+    if (about.axis >= 0) {
+      rotate_pair_about_axis(about, x, y);
       return;
     }
-    packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
-      const packed3::AxisRotation<decltype(k)::value> rotation(about.s, about.c);
-      x = rotation.times(x);
-      y = rotation.times(y);
-    });
+    x = times(E, x);
+    y = times(E, y);
   }
   /// x ← Eᵀ x and y ← Eᵀ y for E in memory, as above (E's columns transposed in registers).
   static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>& about, const Matrix3<S>& E, Vector& x,
                                               Vector& y) {
-    if (about.axis < 0) {
-      const Rotation Et = transposed(rotation(E));
-      x = times(Et, x);
-      y = times(Et, y);
+    if (about.axis >= 0) {
+      rotate_pair_about_axis(spatial_dynamics::transposed(about), x, y);
       return;
     }
+    const Rotation Et = transposed(rotation(E));
+    x = times(Et, x);
+    y = times(Et, y);
+  }
+  /// x ← E x and y ← E y for the rotation about a coordinate axis `about` describes.
+  static SD_INLINE void rotate_pair_about_axis(const RotationAboutAxis<S>& about, Vector& x, Vector& y) {
     packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
       const packed3::AxisRotation<decltype(k)::value> rotation(about.s, about.c);
-      x = rotation.transposed_times(x);
-      y = rotation.transposed_times(y);
+      x = rotation.times(x);
+      y = rotation.times(y);
     });
   }
   static SD_INLINE void store_columns(const Matrix3<S>& M, Packed3Storage& c0, Packed3Storage& c1, Packed3Storage& c2) {
@@ -338,17 +360,25 @@ SD_INLINE void force_to_parent(const TransposedRotation& Et, const typename F::V
   n = F::times(Et, n) + F::cross(r, f);
 }
 
-/// As above, E's structure known as far as `about` tells (the ABA's passes, Data::up_rotation_axis).
-template <class F>
-SD_INLINE void motion_to_child(const RotationAboutAxis<typename F::Scalar>& about, const typename F::Rotation& E,
-                               const typename F::Vector& r, typename F::Vector& w, typename F::Vector& v) {
+/// As above, E's structure known as far as `about` tells (F::up_rotation, Data::up_rotation_axis).
+template <class F, class About>
+SD_INLINE void motion_to_child(const About& about, const typename F::Rotation& E, const typename F::Vector& r,
+                               typename F::Vector& w, typename F::Vector& v) {
   v -= F::cross(r, w);
   F::times_pair(about, E, w, v);
 }
 
-/// As above for ^iX_λ = (E, r) with E in memory and its structure known as far as `about` tells.
+/// As above, given Eᵀ and what is known of its structure (`about_Et`: transposed(about) of E's).
+template <class F, class About, class TransposedRotation>
+SD_INLINE void force_to_parent(const About& about_Et, const TransposedRotation& Et, const typename F::Vector& r,
+                               typename F::Vector& n, typename F::Vector& f) {
+  F::times_pair(about_Et, Et, f, n);
+  n += F::cross(r, f);
+}
+
+/// As above for ^iX_λ = (E, r) given E in memory (Eᵀ formed only where its coefficients are used).
 template <class F>
-SD_INLINE void force_to_parent(const RotationAboutAxis<typename F::Scalar>& about, const Matrix3<typename F::Scalar>& E,
+SD_INLINE void force_to_parent_by_E(const RotationAboutAxis<typename F::Scalar>& about, const Matrix3<typename F::Scalar>& E,
                                const typename F::Vector& r, typename F::Vector& n, typename F::Vector& f) {
   F::transposed_times_pair(about, E, n, f);
   n += F::cross(r, f);

@@ -14,4 +14,10 @@ struct RotationAboutAxis {
   S s = S(0), c = S(1);
 };
 
+/// Eᵀ's structure from E's: the rotation about the same axis by the opposite angle.
+template <class S>
+RotationAboutAxis<S> transposed(const RotationAboutAxis<S>& E) {
+  return {E.axis, -E.s, E.c};
+}
+
 }  // namespace spatial_dynamics
