@@ -429,9 +429,10 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
     const double D_inv = 1 / Ia(column, column);
 
     const sd::MotionVector<double> c(Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const sd::ForceVector<double> W(sd::Vector6<double>(Xm.transpose() * U));  // U in the parent's coordinates
     sd::ArticulatedInertia<double> out(start);
     const sd::Vector6<double> Ia_c =
-        X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, c, out).toVector();
+        X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, W, c, out).toVector();
     const Matrix6 Ia_less = Ia - U * D_inv * U.transpose();
     const Matrix6 expected_step = start + Xm.transpose() * Ia_less * Xm;
     worst_step = std::max(worst_step, (out.matrix - expected_step).norm() / expected_step.norm());

@@ -138,11 +138,23 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   using std::max;
   const S scale = max(max(abs(IA(block, block)), abs(IA(block + 1, block + 1))), abs(IA(block + 2, block + 2)));
   if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
+  const S D_inv = S(1) / D;
   data.U[i].col(0) = U;
-  data.D_inv[i](0, 0) = S(1) / D;
+  data.D_inv[i](0, 0) = D_inv;
   if (lambda == 0) return ForceVector<S>::Zero();
-  return data.X_up[i].applyInverseAddLessRankOne(data.IA[i], U, data.D_inv[i](0, 0), data.c[i], data.IA[lambda],
-                                                 body_up_rotation(data, i));
+  using F = vec3::Form<S>;
+  using V = typename F::Vector;
+  const PluckerTransform<S>& X = data.X_up[i];
+  V W_n, W_f;  // W = Xᵀ U, U taken to the parent as a force (eq. 12)
+  F::load_halves(U.data(), W_n, W_f);
+  vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), W_n, W_f);
+  ForceVector<S>& W_D_inv = data.XtU_D_inv[i];  // for pass 3's q̈ = D⁻¹(u − Uᵀ c) − (W D⁻¹)ᵀ a_λ
+  F::store(W_n * D_inv, W_D_inv.angular);
+  F::store(W_f * D_inv, W_D_inv.linear);
+  ForceVector<S> W;
+  F::store(W_n, W.angular);
+  F::store(W_f, W.linear);
+  return X.applyInverseAddLessRankOne(data.IA[i], U, D_inv, W, data.c[i], data.IA[lambda], body_up_rotation(data, i));
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -209,7 +221,9 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
 
 /// Pass 3 (outward) on the factorisation in data, from a[0]: a'_i = X a_λ + c_i,
 /// q̈_i = D⁻¹(u_i − Uᵀ a'_i), a_i = a'_i + S q̈_i. `c` is the ABA's velocity-product
-/// accelerations; none (nullptr) when solving M δ = r with the factorisation.
+/// accelerations; none (nullptr) when solving M δ = r with the factorisation. At a 1-DoF joint
+/// with a moving parent q̈_i = D⁻¹(u_i − Uᵀ c_i) − (Xᵀ U D⁻¹)ᵀ a_λ (data.XtU_D_inv), which waits
+/// on a_λ for one dot product rather than for a'_i.
 template <class S>
 SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S>& data, const MotionVector<S>* c,
                                              const Vector6<S>* u, MotionVector<S>* a, S* qdd) {
@@ -219,16 +233,29 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
     const Joint<S>& j = model.joints[i];
     const PluckerTransform<S>& X = data.X_up[i];
     const MotionVector<S>& parent = a[model.parent[i]];
-    V w = F::load(parent.angular), l = F::load(parent.linear);
+    const V parent_w = F::load(parent.angular), parent_l = F::load(parent.linear);
+    V w = parent_w, l = parent_l;
     vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), w, l);  // a' = X a_λ
+    V c_w, c_l;
     if (c) {                                                                                                   //      + c
-      w += F::load(c[i].angular);
-      l += F::load(c[i].linear);
+      c_w = F::load(c[i].angular);
+      c_l = F::load(c[i].linear);
+      w += c_w;
+      l += c_l;
     }
     if (j.nv == 1) {
       V U_w, U_v;
       F::load_halves(data.U[i].data(), U_w, U_v);
-      const S qdd_i = data.D_inv[i](0, 0) * (u[i][0] - (F::dot(U_w, w) + F::dot(U_v, l)));  // q̈ = D⁻¹(u − Uᵀ a')
+      S qdd_i;
+      if (model.parent[i] == 0) {  // a_0 is known from the start
+        qdd_i = data.D_inv[i](0, 0) * (u[i][0] - (F::dot(U_w, w) + F::dot(U_v, l)));  // q̈ = D⁻¹(u − Uᵀ a')
+      } else {
+        S u_less_Uc = u[i][0];  // u − Uᵀ c
+        if (c) u_less_Uc -= F::dot(U_w, c_w) + F::dot(U_v, c_l);
+        const ForceVector<S>& W_D_inv = data.XtU_D_inv[i];
+        qdd_i = data.D_inv[i](0, 0) * u_less_Uc -                                      // q̈ = D⁻¹(u − Uᵀ c)
+                (F::dot(F::load(W_D_inv.angular), parent_w) + F::dot(F::load(W_D_inv.linear), parent_l));  // − (Xᵀ U D⁻¹)ᵀ a_λ
+      }
       qdd[j.idx_v] = qdd_i;
       F::add_axis(j, qdd_i, one_dof_rotates(j) ? w : l);                                  // a = a' + S q̈
       F::store(w, a[i].angular);

@@ -45,6 +45,7 @@ struct Data {
   std::vector<ArticulatedInertia<S>> IA;    // articulated-body inertias
   std::vector<Matrix6<S>> U;                // Iᴬ S (first nv columns used)
   std::vector<Matrix6<S>> D_inv;            // (Sᵀ Iᴬ S)^-1 (top-left nv × nv block used)
+  std::vector<ForceVector<S>> XtU_D_inv;    // ^iX_λᵀ U D⁻¹ (1-DoF joint, moving parent): q̈ = D⁻¹(u − Uᵀ c) − (Xᵀ U D⁻¹)ᵀ a_λ
   std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
   // The ABA's gravity split (algorithms/gravity_split.hpp), in WiderScalar<S>: per body the
   // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
@@ -109,6 +110,7 @@ struct Data {
         IA(model.nbodies()),
         U(model.nbodies(), Matrix6<S>::Zero()),
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
+        XtU_D_inv(model.nbodies(), ForceVector<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         gravity_split(model.nbodies()),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),

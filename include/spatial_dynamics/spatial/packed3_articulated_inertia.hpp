@@ -35,21 +35,6 @@ SD_INLINE InertiaBlocks load_blocks(const Matrix6<double>& M) {
   return I;
 }
 
-/// Iᴬ − U D⁻¹ Uᵀ (RBDA Table 7.1) for a rank-one U = (u_ω ; u_v):
-/// A −= u_ω (D⁻¹ u_ω)ᵀ, B −= u_ω (D⁻¹ u_v)ᵀ, C −= u_v (D⁻¹ u_v)ᵀ.
-SD_INLINE void subtract_rank_one(InertiaBlocks& I, Packed3 u_w, Packed3 u_v, double D_inv) {
-  const Packed3 s_w = u_w * splat(D_inv), s_v = u_v * splat(D_inv);
-  I.A[0] -= u_w * broadcast<0>(s_w);
-  I.A[1] -= u_w * broadcast<1>(s_w);
-  I.A[2] -= u_w * broadcast<2>(s_w);
-  I.B[0] -= u_w * broadcast<0>(s_v);
-  I.B[1] -= u_w * broadcast<1>(s_v);
-  I.B[2] -= u_w * broadcast<2>(s_v);
-  I.C[0] -= u_v * broadcast<0>(s_v);
-  I.C[1] -= u_v * broadcast<1>(s_v);
-  I.C[2] -= u_v * broadcast<2>(s_v);
-}
-
 /// Σ_k E(k, c) x_k: the matrix with columns x_0..x_2 times column c of E, whose coefficients are
 /// broadcast from memory (no lane shuffles).
 SD_INLINE Packed3 times_column(const Packed3 (&x)[3], const double* E_column) {
@@ -132,13 +117,19 @@ SD_INLINE void store_rigid(double mass, const Vector3<double>& first_moment, con
   add_to_right_column(o + 30, __builtin_shuffle(h, minus_h, hx2), __builtin_shuffle(m, zero, LaneIndex{4, 4, 0, 4}), false);
 }
 
-/// out += Xᵀ [A B; Bᵀ C] X for X = (E, r) (plucker_transform.hpp): with A' = Eᵀ A E, B' = Eᵀ B E,
-/// C' = Eᵀ C E and G = B' + r×C', the blocks [A' − G r× + r×B'ᵀ, G ; Gᵀ, C'] — column k of G r×
-/// is G (r × e_k), column k of r×B'ᵀ is r × (row k of B'). With `axis` 0–2, E is the rotation
-/// about that coordinate axis by the angle of sine s and cosine c, and its three products take the
-/// lanes it mixes (rotate_about_axis) instead of E's nine coefficients.
+/// A rank-one term W Vᵀ of a 6×6 matrix, W = (w_top ; w_bottom) and V = (v_top ; v_bottom).
+struct RankOne {
+  Packed3 w_top, w_bottom, v_top, v_bottom;
+};
+
+/// out += Xᵀ [A B; Bᵀ C] X (− W Vᵀ where `downdate` is given) for X = (E, r) (plucker_transform.hpp):
+/// with A' = Eᵀ A E, B' = Eᵀ B E, C' = Eᵀ C E and G = B' + r×C', the blocks [A' − G r× + r×B'ᵀ, G ;
+/// Gᵀ, C'] — column k of G r× is G (r × e_k), column k of r×B'ᵀ is r × (row k of B'). With `axis`
+/// 0–2, E is the rotation about that coordinate axis by the angle of sine s and cosine c, and its
+/// three products take the lanes it mixes (rotate_about_axis) instead of E's nine coefficients.
 SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& r, InertiaBlocks I,
-                               Matrix6<double>& out, int axis = -1, double s = 0, double c = 1) {
+                               Matrix6<double>& out, int axis = -1, double s = 0, double c = 1,
+                               const RankOne* downdate = nullptr) {
   Packed3 B0, B1, B2;  // B'; I.B then holds B'ᵀ
   if (axis < 0) {
     rotate_transposed(E.data(), I.A);  // A' (symmetric)
@@ -158,13 +149,30 @@ SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& 
     transpose(B0, B1, B2, I.B[0], I.B[1], I.B[2]);
   }
   const Packed3 rr = load3(r);
-  const Packed3 G0 = B0 + cross(rr, I.C[0]), G1 = B1 + cross(rr, I.C[1]), G2 = B2 + cross(rr, I.C[2]);
+  Packed3 G0 = B0 + cross(rr, I.C[0]), G1 = B1 + cross(rr, I.C[1]), G2 = B2 + cross(rr, I.C[2]);
   Packed3 Gt0, Gt1, Gt2;  // rows of G
   transpose(G0, G1, G2, Gt0, Gt1, Gt2);
   const Packed3 r0 = splat(r.x()), r1 = splat(r.y()), r2 = splat(r.z());
-  const Packed3 TL0 = I.A[0] - (G1 * r2 - G2 * r1) + cross(rr, I.B[0]);  // G (r × e₀) = r₂ G₁ − r₁ G₂
-  const Packed3 TL1 = I.A[1] - (G2 * r0 - G0 * r2) + cross(rr, I.B[1]);  // G (r × e₁) = r₀ G₂ − r₂ G₀
-  const Packed3 TL2 = I.A[2] - (G0 * r1 - G1 * r0) + cross(rr, I.B[2]);  // G (r × e₂) = r₁ G₀ − r₀ G₁
+  Packed3 TL0 = I.A[0] - (G1 * r2 - G2 * r1) + cross(rr, I.B[0]);  // G (r × e₀) = r₂ G₁ − r₁ G₂
+  Packed3 TL1 = I.A[1] - (G2 * r0 - G0 * r2) + cross(rr, I.B[1]);  // G (r × e₁) = r₀ G₂ − r₂ G₀
+  Packed3 TL2 = I.A[2] - (G0 * r1 - G1 * r0) + cross(rr, I.B[2]);  // G (r × e₂) = r₁ G₀ − r₀ G₁
+  if (downdate) {  // column k −= W V_k
+    const RankOne& d = *downdate;
+    const Packed3 v0 = broadcast<0>(d.v_top), v1 = broadcast<1>(d.v_top), v2 = broadcast<2>(d.v_top);
+    const Packed3 v3 = broadcast<0>(d.v_bottom), v4 = broadcast<1>(d.v_bottom), v5 = broadcast<2>(d.v_bottom);
+    TL0 -= d.w_top * v0;
+    TL1 -= d.w_top * v1;
+    TL2 -= d.w_top * v2;
+    Gt0 -= d.w_bottom * v0;
+    Gt1 -= d.w_bottom * v1;
+    Gt2 -= d.w_bottom * v2;
+    G0 -= d.w_top * v3;
+    G1 -= d.w_top * v4;
+    G2 -= d.w_top * v5;
+    I.C[0] -= d.w_bottom * v3;
+    I.C[1] -= d.w_bottom * v4;
+    I.C[2] -= d.w_bottom * v5;
+  }
   double* o = out.data();
   add_to_left_column(o, TL0, Gt0);
   add_to_left_column(o + 6, TL1, Gt1);

@@ -175,29 +175,34 @@ struct PluckerTransform {
   }
 
   /// out += Xᵀ Iᵃ X for Iᵃ = Iᴬ − U D⁻¹ Uᵀ at a 1-DoF joint (U = Iᴬ S, RBDA Table 7.1), and
-  /// Iᵃ c returned: the ABA's inward step at such a joint, without forming Iᵃ in memory.
+  /// Iᵃ c returned: the ABA's inward step at such a joint, without forming Iᵃ in memory. The
+  /// downdate is subtracted after the transform, as W D⁻¹ Wᵀ with W = Xᵀ U (the caller's, U taken
+  /// to the parent as a force), so that the transform of Iᴬ does not wait for D⁻¹.
   /// `about` may tell that E is a rotation about a coordinate axis (the packed products then take
   /// its structure).
   SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U,
-                                                      const S& D_inv, const MotionVector<S>& c,
-                                                      ArticulatedInertia<S>& out,
+                                                      const S& D_inv, const ForceVector<S>& W,
+                                                      const MotionVector<S>& c, ArticulatedInertia<S>& out,
                                                       const RotationAboutAxis<S>& about = {}) const {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<S, double>::value) {
       using namespace packed3;
-      InertiaBlocks blocks = load_blocks(Ia.matrix);
+      const InertiaBlocks blocks = load_blocks(Ia.matrix);
       Packed3 top, bottom;  // Iᴬ c
       times_motion(blocks, c.angular.data(), c.linear.data(), top, bottom);
+      const Packed3 w_n = load3(W.angular), w_f = load3(W.linear), d = splat(D_inv);
+      const RankOne downdate{w_n, w_f, w_n * d, w_f * d};  // W D⁻¹ Wᵀ
+      add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c, &downdate);
       const Packed3 u_w = load(U.data()), u_v = load_after(U.data() + 2);
-      subtract_rank_one(blocks, u_w, u_v, D_inv);
-      add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c);
       const Packed3 uc = u_w * load3(c.angular) + u_v * load3(c.linear);
       const Packed3 k = splat(D_inv * (uc[0] + uc[1] + uc[2]));                // D⁻¹ Uᵀ c
       return {to_vector3(top - u_w * k), to_vector3(bottom - u_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
     }
 #endif
     static_cast<void>(about);  // the Eigen products take E's coefficients
-    applyInverseAdd(ArticulatedInertia<S>(Ia.matrix - U * (D_inv * U.transpose())), out);
+    applyInverseAdd(Ia, out);
+    const Vector6<S> w = W.toVector();
+    out.matrix -= w * (D_inv * w.transpose());
     return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
   }
 
