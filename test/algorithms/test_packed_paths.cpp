@@ -429,10 +429,13 @@ TEST(PackedPaths, ArticulatedInertiaStepAgainstMatrices) {
     const double D_inv = 1 / Ia(column, column);
 
     const sd::MotionVector<double> c(Eigen::Vector3d(u(rng), u(rng), u(rng)), Eigen::Vector3d(u(rng), u(rng), u(rng)));
-    const sd::ForceVector<double> W(sd::Vector6<double>(Xm.transpose() * U));  // U in the parent's coordinates
+    const sd::Vector6<double> W = Xm.transpose() * U;  // U in the parent's coordinates
+    namespace p3 = sd::packed3;
     sd::ArticulatedInertia<double> out(start);
     const sd::Vector6<double> Ia_c =
-        X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), U, D_inv, W, c, out).toVector();
+        X.applyInverseAddLessRankOne(sd::ArticulatedInertia<double>(Ia), p3::load3(U.data()), p3::load3(U.data() + 3),
+                                     D_inv, p3::load3(W.data()), p3::load3(W.data() + 3), c, out)
+            .toVector();
     const Matrix6 Ia_less = Ia - U * D_inv * U.transpose();
     const Matrix6 expected_step = start + Xm.transpose() * Ia_less * Xm;
     worst_step = std::max(worst_step, (out.matrix - expected_step).norm() / expected_step.norm());

@@ -54,10 +54,18 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     F::up_transform(model, data, i, q.data(), E, r);                            // ^iX_λ into data.X_up[i]
     if (split_gravity) gravity_split_outward(model, data, i, E);                 // g_i = E g_λ
     // v_i = X v_λ + S q̇ (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
-    const MotionVector<S>& parent = data.v[model.parent[i]];
-    V w = F::load(parent.angular), v = F::load(parent.linear), cw, cv;
-    vec3::motion_to_child<F>(body_up_rotation(data, i), E, r, w, v);
-    if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
+    V w, v, cw, cv;
+    const auto from_parent = [&]() SD_INLINE_LAMBDA {  // X v_λ
+      const MotionVector<S>& parent = data.v[model.parent[i]];
+      w = F::load(parent.angular);
+      v = F::load(parent.linear);
+      vec3::motion_to_child<F>(body_up_rotation(data, i), E, r, w, v);
+    };
+    if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
+      w = v = cw = cv = F::load(Vector3<S>(Vector3<S>::Zero()));
+      F::add_axis(j, qd[j.idx_v], one_dof_rotates(j) ? w : v);
+    } else if (j.nv == 1) {  // S q̇ = (q̇ a ; 0) or (0 ; q̇ a): the axis' products
+      from_parent();
       const S qd_i = qd[j.idx_v];
       if (one_dof_rotates(j)) {
         F::add_axis(j, qd_i, w);
@@ -69,6 +77,7 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
         cv = F::cross_axis(j, w, qd_i);
       }
     } else {
+      from_parent();
       const MotionVector<S> vJ = body_joint_motion(model, data, i, qd.data()), cJ = body_joint_bias(model, data, i, qd.data());
       const V jw = F::load(vJ.angular), jv = F::load(vJ.linear);
       w += jw;
@@ -126,9 +135,12 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
   const Matrix6<S>& IA = data.IA[i].matrix;
-  const Vector6<S> U = inertia_times_subspace(j, IA);                         // U = Iᴬ S
-  const S D = model.has_armature ? joint_project(j, U) + model.armature[j.idx_v]  // D = Sᵀ U + armature (§7.3)
-                                 : joint_project(j, U);                        // D = Sᵀ U
+  using F = vec3::Form<S>;
+  using V = typename F::Vector;
+  V U_w, U_v;  // U = Iᴬ S
+  F::inertia_times_axis(j, IA, U_w, U_v);
+  const S S_dot_U = F::dot_axis(j, one_dof_rotates(j) ? U_w : U_v);
+  const S D = model.has_armature ? S_dot_U + model.armature[j.idx_v] : S_dot_U;  // D = Sᵀ U (+ armature, RBDA §7.3)
   // D is numerically zero when it is below the rounding noise of the block it is taken from:
   // the rotational block (kg m²) for a revolute joint, the mass block (kg) for a prismatic one,
   // so that the test does not depend on the units (a millimetre robot is not singular). The block
@@ -139,22 +151,17 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   const S scale = max(max(abs(IA(block, block)), abs(IA(block + 1, block + 1))), abs(IA(block + 2, block + 2)));
   if (!(D > S(64) * Eigen::NumTraits<S>::epsilon() * scale)) throw_singular_joint(model, i);
   const S D_inv = S(1) / D;
-  data.U[i].col(0) = U;
+  F::store_halves(U_w, U_v, data.U[i].data());
   data.D_inv[i](0, 0) = D_inv;
   if (lambda == 0) return ForceVector<S>::Zero();
-  using F = vec3::Form<S>;
-  using V = typename F::Vector;
   const PluckerTransform<S>& X = data.X_up[i];
-  V W_n, W_f;  // W = Xᵀ U, U taken to the parent as a force (eq. 12)
-  F::load_halves(U.data(), W_n, W_f);
+  V W_n = U_w, W_f = U_v;  // W = Xᵀ U, U taken to the parent as a force (eq. 12)
   vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), W_n, W_f);
   ForceVector<S>& W_D_inv = data.XtU_D_inv[i];  // for pass 3's q̈ = D⁻¹(u − Uᵀ c) − (W D⁻¹)ᵀ a_λ
   F::store(W_n * D_inv, W_D_inv.angular);
   F::store(W_f * D_inv, W_D_inv.linear);
-  ForceVector<S> W;
-  F::store(W_n, W.angular);
-  F::store(W_f, W.linear);
-  return X.applyInverseAddLessRankOne(data.IA[i], U, D_inv, W, data.c[i], data.IA[lambda], body_up_rotation(data, i));
+  return X.applyInverseAddLessRankOne(data.IA[i], U_w, U_v, D_inv, W_n, W_f, data.c[i], data.IA[lambda],
+                                      body_up_rotation(data, i));
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -229,32 +236,40 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
                                              const Vector6<S>* u, MotionVector<S>* a, S* qdd) {
   using F = vec3::Form<S>;
   using V = typename F::Vector;
+  const bool base_at_rest = (a[0].angular.array() == S(0)).all() && (a[0].linear.array() == S(0)).all();
+  const V zero = F::load(Vector3<S>(Vector3<S>::Zero()));
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
     const PluckerTransform<S>& X = data.X_up[i];
     const MotionVector<S>& parent = a[model.parent[i]];
-    const V parent_w = F::load(parent.angular), parent_l = F::load(parent.linear);
-    V w = parent_w, l = parent_l;
-    vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), w, l);  // a' = X a_λ
-    V c_w, c_l;
-    if (c) {                                                                                                   //      + c
+    const bool from_rest = model.parent[i] == 0 && base_at_rest;  // a' = X a_0 + c = c
+    V c_w = zero, c_l = zero;
+    if (c) {
       c_w = F::load(c[i].angular);
       c_l = F::load(c[i].linear);
-      w += c_w;
-      l += c_l;
+    }
+    V w = c_w, l = c_l;
+    if (!from_rest) {
+      V Xa_w = F::load(parent.angular), Xa_l = F::load(parent.linear);
+      vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), Xa_w, Xa_l);  // a' = X a_λ
+      w += Xa_w;                                                                                              //      + c
+      l += Xa_l;
     }
     if (j.nv == 1) {
       V U_w, U_v;
       F::load_halves(data.U[i].data(), U_w, U_v);
       S qdd_i;
-      if (model.parent[i] == 0) {  // a_0 is known from the start
+      if (model.parent[i] == 0 && !from_rest) {  // a_0 is known from the start
         qdd_i = data.D_inv[i](0, 0) * (u[i][0] - (F::dot(U_w, w) + F::dot(U_v, l)));  // q̈ = D⁻¹(u − Uᵀ a')
       } else {
         S u_less_Uc = u[i][0];  // u − Uᵀ c
         if (c) u_less_Uc -= F::dot(U_w, c_w) + F::dot(U_v, c_l);
-        const ForceVector<S>& W_D_inv = data.XtU_D_inv[i];
-        qdd_i = data.D_inv[i](0, 0) * u_less_Uc -                                      // q̈ = D⁻¹(u − Uᵀ c)
-                (F::dot(F::load(W_D_inv.angular), parent_w) + F::dot(F::load(W_D_inv.linear), parent_l));  // − (Xᵀ U D⁻¹)ᵀ a_λ
+        qdd_i = data.D_inv[i](0, 0) * u_less_Uc;                                        // q̈ = D⁻¹(u − Uᵀ c)
+        if (!from_rest) {
+          const ForceVector<S>& W_D_inv = data.XtU_D_inv[i];
+          qdd_i -= F::dot(F::load(W_D_inv.angular), F::load(parent.angular)) +
+                   F::dot(F::load(W_D_inv.linear), F::load(parent.linear));           //      − (Xᵀ U D⁻¹)ᵀ a_λ
+        }
       }
       qdd[j.idx_v] = qdd_i;
       F::add_axis(j, qdd_i, one_dof_rotates(j) ? w : l);                                  // a = a' + S q̈

@@ -58,18 +58,6 @@ SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
   return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
 }
 
-/// Sᵀ x for a 1-DoF joint and a force-like 6-vector x (angular part first).
-template <class S>
-SD_INLINE S joint_project(const Joint<S>& j, const Vector6<S>& x) {
-  return detail::dot_axis(j, x.data() + (one_dof_rotates(j) ? 0 : 3));
-}
-
-/// Iᴬ S for a 1-DoF joint: one column of Iᴬ for an axis-aligned joint.
-template <class S>
-SD_INLINE Vector6<S> inertia_times_subspace(const Joint<S>& j, const Matrix6<S>& I) {
-  return detail::combine_columns_along_axis(j, I, one_dof_rotates(j) ? 0 : 3);
-}
-
 // ---- any joint, through its model (model/joints/); s and c are its angle's sine and cosine ----
 
 /// S q̇; `qd` points at the joint's first velocity coordinate.

@@ -29,6 +29,27 @@ struct OneStateJointTerms {
     aw = F::load(aJ.angular);
     al = F::load(aJ.linear);
   }
+  /// U = I S of a 1-DoF joint by its halves (the 6-vector's coefficients 0–2 and 3–5): the
+  /// combination of I's columns its axis takes, one column for a coordinate axis.
+  template <class V>
+  static SD_INLINE void inertia_times_axis(const Joint<S>& j, const Matrix6<S>& I, V& top, V& bottom) {
+    const S* columns = I.data() + 6 * (one_dof_rotates(j) ? 0 : 3);
+    switch (j.axis_kind) {
+      case AxisKind::X: F::load_halves(columns, top, bottom); return;
+      case AxisKind::Y: F::load_halves(columns + 6, top, bottom); return;
+      case AxisKind::Z: F::load_halves(columns + 12, top, bottom); return;
+      case AxisKind::General: break;
+    }
+    V top_k, bottom_k;
+    F::load_halves(columns, top_k, bottom_k);
+    top = top_k * j.axis.x();
+    bottom = bottom_k * j.axis.x();
+    for (int k = 1; k < 3; ++k) {
+      F::load_halves(columns + 6 * k, top_k, bottom_k);
+      top += top_k * j.axis[k];
+      bottom += bottom_k * j.axis[k];
+    }
+  }
   /// What is known of ^iX_λ(i)'s rotation (joint_kernels.hpp's body_up_rotation).
   static SD_INLINE RotationAboutAxis<S> up_rotation(const Data<S>& data, int i) { return body_up_rotation(data, i); }
   template <class V>
@@ -59,6 +80,12 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   static SD_INLINE void load_halves(const S* p, Vector& top, Vector& bottom) {
     top = Vector(p[0], p[1], p[2]);
     bottom = Vector(p[3], p[4], p[5]);
+  }
+  static SD_INLINE void store_halves(const Vector& top, const Vector& bottom, S* p) {
+    for (int k = 0; k < 3; ++k) {
+      p[k] = top[k];
+      p[3 + k] = bottom[k];
+    }
   }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return R.E * x; }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return cross_3d(a, b); }
@@ -185,6 +212,10 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   static SD_INLINE void load_halves(const S* p, Vector& top, Vector& bottom) {
     top = packed3::load(p);
     bottom = packed3::load_after(p + 2);
+  }
+  static SD_INLINE void store_halves(const Vector& top, const Vector& bottom, S* p) {
+    packed3::store3(top, p);
+    packed3::store3(bottom, p + 3);
   }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return packed3::mat_vec(R.c0, R.c1, R.c2, x); }
   static SD_INLINE Vector cross(const Vector& a, const Vector& b) { return packed3::cross(a, b); }

@@ -177,33 +177,38 @@ struct PluckerTransform {
   /// out += Xᵀ Iᵃ X for Iᵃ = Iᴬ − U D⁻¹ Uᵀ at a 1-DoF joint (U = Iᴬ S, RBDA Table 7.1), and
   /// Iᵃ c returned: the ABA's inward step at such a joint, without forming Iᵃ in memory. The
   /// downdate is subtracted after the transform, as W D⁻¹ Wᵀ with W = Xᵀ U (the caller's, U taken
-  /// to the parent as a force), so that the transform of Iᴬ does not wait for D⁻¹.
-  /// `about` may tell that E is a rotation about a coordinate axis (the packed products then take
-  /// its structure).
-  SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const Vector6<S>& U,
-                                                      const S& D_inv, const ForceVector<S>& W,
+  /// to the parent as a force), so that the transform of Iᴬ does not wait for D⁻¹. U = (U_w ; U_v)
+  /// and W = (W_n ; W_f) by their halves, as the caller's 3-vectors hold them (V: packed3's
+  /// registers for double where SD_PACKED3 is defined, else Vector3<S>). `about` may tell that E
+  /// is a rotation about a coordinate axis (the packed products then take its structure).
+  template <class V>
+  SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const V& U_w, const V& U_v,
+                                                      const S& D_inv, const V& W_n, const V& W_f,
                                                       const MotionVector<S>& c, ArticulatedInertia<S>& out,
                                                       const RotationAboutAxis<S>& about = {}) const {
 #ifdef SD_PACKED3
-    if constexpr (std::is_same<S, double>::value) {
+    if constexpr (std::is_same<V, packed3::Packed3>::value) {
       using namespace packed3;
       const InertiaBlocks blocks = load_blocks(Ia.matrix);
       Packed3 top, bottom;  // Iᴬ c
       times_motion(blocks, c.angular.data(), c.linear.data(), top, bottom);
-      const Packed3 w_n = load3(W.angular), w_f = load3(W.linear), d = splat(D_inv);
-      const RankOne downdate{w_n, w_f, w_n * d, w_f * d};  // W D⁻¹ Wᵀ
+      const Packed3 d = splat(D_inv);
+      const RankOne downdate{W_n, W_f, W_n * d, W_f * d};  // W D⁻¹ Wᵀ
       add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c, &downdate);
-      const Packed3 u_w = load(U.data()), u_v = load_after(U.data() + 2);
-      const Packed3 uc = u_w * load3(c.angular) + u_v * load3(c.linear);
+      const Packed3 uc = U_w * load3(c.angular) + U_v * load3(c.linear);
       const Packed3 k = splat(D_inv * (uc[0] + uc[1] + uc[2]));                // D⁻¹ Uᵀ c
-      return {to_vector3(top - u_w * k), to_vector3(bottom - u_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
-    }
+      return {to_vector3(top - U_w * k), to_vector3(bottom - U_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
+    } else
 #endif
-    static_cast<void>(about);  // the Eigen products take E's coefficients
-    applyInverseAdd(Ia, out);
-    const Vector6<S> w = W.toVector();
-    out.matrix -= w * (D_inv * w.transpose());
-    return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
+    {
+      static_cast<void>(about);  // the Eigen products take E's coefficients
+      Vector6<S> U, W;
+      U << U_w, U_v;
+      W << W_n, W_f;
+      applyInverseAdd(Ia, out);
+      out.matrix -= W * (D_inv * W.transpose());
+      return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
+    }
   }
 
   // ---- composition and inverse ----------------------------------------------------------
