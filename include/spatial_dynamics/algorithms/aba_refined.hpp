@@ -28,6 +28,7 @@
 
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/algorithms/wide_residual_form.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
@@ -60,6 +61,9 @@ struct RefinementWorkspace {
   std::vector<MotionVector<S>> a;
   std::vector<Vector6<S>> u;
   VectorX<S> residual, delta;
+  // The residual RNEA on the double model (wide_residual_form.hpp), where it takes the model.
+  WideResidualWork wide_work;
+  bool wide_form_takes_model = false;
   int iterations = 0;  // corrections applied by the last call
   S first_correction = S(0);  // ‖δ₀‖/‖x‖ of the last call: the unrefined result's relative error
   S effort_norm = S(0);       // ‖τ‖ of the last call
@@ -78,7 +82,9 @@ struct RefinementWorkspace {
         a(model.nbodies(), MotionVector<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         residual(VectorX<S>::Zero(model.nv)),
-        delta(VectorX<S>::Zero(model.nv)) {}
+        delta(VectorX<S>::Zero(model.nv)),
+        wide_work(model.nbodies()),
+        wide_form_takes_model(wide_residual_form_takes(model)) {}
 };
 
 namespace detail {
@@ -99,18 +105,41 @@ F widen(const W& x) {
   else return F(x);
 }
 
-/// r₀ = τ − ID(q, q̇, x₀) in W: the RNEA in W (RBDA Table 5.1).
+/// ID(q, q̇, q̈) in W (RBDA Table 5.1) at the workspace's q, under gravity or none: for double
+/// with double-double residuals, on the double model where wide_residual_form.hpp takes it; else
+/// the RNEA on the wide model.
 template <class S, class W>
-void wide_residual(const ConstVectorRef<S>& tau, RefinementWorkspace<S, W>& ws) {
-  const VectorX<W>& id = rnea_impl(ws.model_wide, ws.data_wide, ws.q_wide, ws.qd_wide, ws.x_wide,
-                                   static_cast<const ForceVector<W>*>(nullptr));
+const VectorX<W>& wide_inverse_dynamics(const Model<S>& model, RefinementWorkspace<S, W>& ws, const VectorX<W>& qd,
+                                        const VectorX<W>& qdd, bool with_gravity) {
+#ifdef SD_PACKED3
+  if constexpr (std::is_same<S, double>::value && std::is_same<W, DoubleDouble>::value) {
+    if (ws.wide_form_takes_model) {
+      auto& bodies = ws.wide_work.rnea;
+      for (int i = 1; i < model.nbodies(); ++i)
+        if (model.joints[i].type == JointType::Revolute) sin_cos(ws.q_wide[model.joints[i].idx_q], bodies[i].sin, bodies[i].cos);
+      const Vector3<S> gravity = with_gravity ? model.gravity : Vector3<S>(Vector3<S>::Zero());
+      rnea_passes<vec3::WideResidualForm>(model, ws.wide_work, ws.q_wide.data(), qd.data(), qdd.data(),
+                                          static_cast<const ForceVector<S>*>(nullptr), gravity, ws.data_wide.tau.data());
+      return ws.data_wide.tau;
+    }
+  }
+#endif
+  static_cast<void>(model);
+  const Vector3<W> gravity = with_gravity ? ws.model_wide.gravity : Vector3<W>(Vector3<W>::Zero());
+  return rnea_impl(ws.model_wide, ws.data_wide, ws.q_wide, qd, qdd, static_cast<const ForceVector<W>*>(nullptr), gravity);
+}
+
+/// r₀ = τ − ID(q, q̇, x₀) in W.
+template <class S, class W>
+void wide_residual(const Model<S>& model, const ConstVectorRef<S>& tau, RefinementWorkspace<S, W>& ws) {
+  const VectorX<W>& id = wide_inverse_dynamics(model, ws, ws.qd_wide, ws.x_wide, true);
   for (int k = 0; k < ws.model_wide.nv; ++k) ws.residual_wide[k] = W(tau[k]) - id[k];
 }
 
-/// r ← r − M δ in W.
+/// r ← r − M δ in W: M δ = ID(q, 0, δ) without gravity (RBDA eq. 5.1).
 template <class S, class W>
-void subtract_mass_matrix_product(RefinementWorkspace<S, W>& ws) {
-  const VectorX<W>& product = mass_matrix_times(ws.model_wide, ws.data_wide, ws.q_wide, ws.delta_wide);
+void subtract_mass_matrix_product(const Model<S>& model, RefinementWorkspace<S, W>& ws) {
+  const VectorX<W>& product = wide_inverse_dynamics(model, ws, ws.data_wide.zero_v, ws.delta_wide, false);
   for (int k = 0; k < ws.model_wide.nv; ++k) ws.residual_wide[k] -= product[k];
 }
 
@@ -174,7 +203,7 @@ void refine(const Model<S>& model, const Data<S>& data, RefinementWorkspace<S, W
     previous = size;
     // r_{k+1} = r_k − M δ_k: in W, or in S once ‖δ‖ ≤ (ε_W/ε_S) ‖x‖ makes that as accurate.
     if (size <= eps_ratio * x_size) subtract_mass_matrix_product_narrow(model, q, ws);
-    else subtract_mass_matrix_product(ws);
+    else subtract_mass_matrix_product(model, ws);
   }
 }
 
@@ -189,7 +218,7 @@ void aba_with_wide_residual(const Model<S>& model, Data<S>& data, RefinementWork
     ws.qd_wide[k] = W(qd[k]);
     ws.x_wide[k] = W(data.qdd[k]);
   }
-  wide_residual(tau, ws);
+  wide_residual(model, tau, ws);
 }
 
 }  // namespace detail
@@ -225,7 +254,7 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
       fine.qd_wide[k] = F(qd[k]);
       fine.x_wide[k] = detail::widen<F>(ws.x_wide[k]);  // exact when F is wider than W
     }
-    detail::wide_residual(tau, fine);
+    detail::wide_residual(model, tau, fine);
     detail::refine(model, data, fine, q, max_iterations, rate);
     for (int k = 0; k < model.nv; ++k) data.qdd[k] = S(fine.x_wide[k]);
   }
