@@ -43,34 +43,6 @@ bool wide_residual_form_takes(const Model<S>& model) {
 }
 
 #ifdef SD_PACKED3
-namespace packed3 {
-
-SD_INLINE PackedDoubleDouble operator-(const PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x + (-y); }
-SD_INLINE PackedDoubleDouble& operator+=(PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x = x + y; }
-SD_INLINE PackedDoubleDouble& operator-=(PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x = x - y; }
-
-/// a ∘ b for double-double a and b: TwoProduct of the high parts plus the cross terms.
-SD_INLINE PackedDoubleDouble operator*(const PackedDoubleDouble& a, const PackedDoubleDouble& b) {
-  const Packed3 p = a.hi * b.hi;
-  return {p, fma(a.hi, b.hi, -p) + (a.hi * b.lo + a.lo * b.hi)};
-}
-
-/// a × b for double-double a and b: yzx(a ∘ yzx(b) − yzx(a) ∘ b).
-SD_INLINE PackedDoubleDouble cross(const PackedDoubleDouble& a, const PackedDoubleDouble& b) {
-  const PackedDoubleDouble yzx_a{yzx(a.hi), yzx(a.lo)}, yzx_b{yzx(b.hi), yzx(b.lo)};
-  const PackedDoubleDouble difference = a * yzx_b - yzx_a * b;
-  return {yzx(difference.hi), yzx(difference.lo)};
-}
-
-SD_INLINE PackedDoubleDouble splat(const DoubleDouble& x) { return {splat(x.hi), splat(x.lo)}; }
-
-/// Σ of lanes 0–2.
-SD_INLINE DoubleDouble lane_sum(const PackedDoubleDouble& x) {
-  return (DoubleDouble(x.hi[0], x.lo[0]) + DoubleDouble(x.hi[1], x.lo[1])) + DoubleDouble(x.hi[2], x.lo[2]);
-}
-
-}  // namespace packed3
-
 namespace vec3 {
 
 /// The form of rnea_passes on WideResidualWork (see above).

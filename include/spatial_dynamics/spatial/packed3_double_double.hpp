@@ -1,9 +1,11 @@
 // A 3-vector of double-doubles held in two 4-lane registers (hi, lo), for the ABA's gravity split
-// (spatial/wide_vector3.hpp, for algorithms/gravity_split.hpp): the error-free transformations of double_double.hpp
+// (spatial/wide_vector3.hpp, for algorithms/gravity_split.hpp) and aba_refined's residual RNEA
+// (algorithms/wide_residual_form.hpp): the error-free transformations of double_double.hpp
 // (TwoSum, TwoProduct by a fused multiply-add) applied to three lanes at once. As there, sums are
 // not renormalised; lane 3 is a pad that no operation moves into lanes 0–2.
 #pragma once
 
+#include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/packed3.hpp"
 
 #ifdef SD_PACKED3
@@ -69,6 +71,32 @@ template <int axis>
 SD_INLINE PackedDoubleDouble times(const AxisRotation<axis>& E, const PackedDoubleDouble& y, bool transposed) {
   const PackedDoubleDouble swapped{E.swap(y.hi), E.swap(y.lo)};
   return scale(E.cv, y) + scale(transposed ? -E.sv : E.sv, swapped);
+}
+
+// Both operands double-double (the residual RNEA on the double model, algorithms/wide_residual_form.hpp).
+
+SD_INLINE PackedDoubleDouble operator-(const PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x + (-y); }
+SD_INLINE PackedDoubleDouble& operator+=(PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x = x + y; }
+SD_INLINE PackedDoubleDouble& operator-=(PackedDoubleDouble& x, const PackedDoubleDouble& y) { return x = x - y; }
+
+/// a ∘ b for double-double a and b: TwoProduct of the high parts plus the cross terms.
+SD_INLINE PackedDoubleDouble operator*(const PackedDoubleDouble& a, const PackedDoubleDouble& b) {
+  const Packed3 p = a.hi * b.hi;
+  return {p, fma(a.hi, b.hi, -p) + (a.hi * b.lo + a.lo * b.hi)};
+}
+
+/// a × b for double-double a and b: yzx(a ∘ yzx(b) − yzx(a) ∘ b).
+SD_INLINE PackedDoubleDouble cross(const PackedDoubleDouble& a, const PackedDoubleDouble& b) {
+  const PackedDoubleDouble yzx_a{yzx(a.hi), yzx(a.lo)}, yzx_b{yzx(b.hi), yzx(b.lo)};
+  const PackedDoubleDouble difference = a * yzx_b - yzx_a * b;
+  return {yzx(difference.hi), yzx(difference.lo)};
+}
+
+SD_INLINE PackedDoubleDouble splat(const DoubleDouble& x) { return {splat(x.hi), splat(x.lo)}; }
+
+/// Σ of lanes 0–2.
+SD_INLINE DoubleDouble lane_sum(const PackedDoubleDouble& x) {
+  return (DoubleDouble(x.hi[0], x.lo[0]) + DoubleDouble(x.hi[1], x.lo[1])) + DoubleDouble(x.hi[2], x.lo[2]);
 }
 
 }  // namespace packed3
