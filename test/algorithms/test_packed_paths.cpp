@@ -395,7 +395,7 @@ TEST(PackedPaths, AbaVelocityPassAgainstMatrices) {
         };
         worst = std::max({worst, relative(data.v[i].toVector(), v), relative(data.c[i].toVector(), c),
                           relative(data.f[i].toVector(), p)});
-        EXPECT_EQ(data.IA[i].matrix, I) << model.joint_names[i];
+        if (!data.has_children[i]) EXPECT_EQ(data.IA[i].matrix, I) << model.joint_names[i];  // a parent's: pass 2
       }
     }
   }

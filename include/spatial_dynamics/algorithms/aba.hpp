@@ -38,7 +38,8 @@ SD_INLINE void check_aba_inputs(const Model<S>& model, const ConstVectorRef<S>& 
 }
 
 /// Pass 1 (outward): transforms, velocities, velocity-product accelerations, rigid bias forces,
-/// on the 3-vectors of this build (vector3_form.hpp); Iᴬ_i = I_i.
+/// on the 3-vectors of this build (vector3_form.hpp); Iᴬ_i = I_i at a leaf (a parent's Iᴬ is
+/// started by its first child in pass 2: data.first_child).
 template <class S>
 SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                  const ConstVectorRef<S>& qd, const ForceVector<S>* f_ext, bool split_gravity) {
@@ -97,7 +98,7 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     }
     F::store(n, data.f[i].angular);
     F::store(f, data.f[i].linear);
-    data.IA[i].assign(model.inertia[i]);                                        // Iᴬ_i = I_i
+    if (!data.has_children[i]) data.IA[i].assign(model.inertia[i]);              // Iᴬ_i = I_i
   }
 }
 
@@ -123,13 +124,15 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
   data.D_inv[i] = llt.solve(Matrix6<S>::Identity());
   if (lambda > 0) {
     IA -= U * data.D_inv[i] * U.transpose();                                   // Iᵃ = Iᴬ − U D⁻¹ Uᵀ
-    data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda]);                 // Iᴬ_λ += Xᵀ Iᵃ X
+    data.X_up[i].applyInverseAdd(data.IA[i], data.IA[lambda],                  // Iᴬ_λ += Xᵀ Iᵃ X
+                                 data.first_child[i] ? &model.inertia[lambda] : nullptr);  // (I_λ + … first)
   }
 }
 
 /// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ Iᵃ X with
 /// Iᵃ = Iᴬ − U D⁻¹ Uᵀ, and Iᵃ c_i returned for the force part (zero at a joint on the base).
-/// Iᴬ_i stays in data.IA[i]: the downdate is formed only on its way to the parent.
+/// Iᴬ_i stays in data.IA[i]: the downdate is formed only on its way to the parent. The parent's
+/// first child stores Iᴬ_λ = I_λ + Xᵀ Iᵃ X, the others add to it.
 template <class S>
 SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
   const Joint<S>& j = model.joints[i];
@@ -161,7 +164,7 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   F::store(W_n * D_inv, W_D_inv.angular);
   F::store(W_f * D_inv, W_D_inv.linear);
   return X.applyInverseAddLessRankOne(data.IA[i], U_w, U_v, D_inv, W_n, W_f, data.c[i], data.IA[lambda],
-                                      body_up_rotation(data, i));
+                                      body_up_rotation(data, i), data.first_child[i] ? &model.inertia[lambda] : nullptr);
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
@@ -206,7 +209,7 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
   F::store(F::load(parent.linear) + f, parent.linear);
 }
 
-/// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I and f = pᴬ;
+/// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I at the leaves and f = pᴬ;
 /// with split_gravity, the joint forces τ − τ_g(q) in place of τ. Leaves Iᴬ_i in data.IA[i] at a
 /// 1-DoF joint and Iᵃ_i at a multi-DoF joint with a parent.
 template <class S>
@@ -230,7 +233,8 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
 /// q̈_i = D⁻¹(u_i − Uᵀ a'_i), a_i = a'_i + S q̈_i. `c` is the ABA's velocity-product
 /// accelerations; none (nullptr) when solving M δ = r with the factorisation. At a 1-DoF joint
 /// with a moving parent q̈_i = D⁻¹(u_i − Uᵀ c_i) − (Xᵀ U D⁻¹)ᵀ a_λ (data.XtU_D_inv), which waits
-/// on a_λ for one dot product rather than for a'_i.
+/// on a_λ for one dot product rather than for a'_i; a leaf's a_i is then not formed (no child
+/// reads it), and a[i] keeps what it held.
 template <class S>
 SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S>& data, const MotionVector<S>* c,
                                              const Vector6<S>* u, MotionVector<S>* a, S* qdd) {
@@ -249,17 +253,19 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
       c_l = F::load(c[i].linear);
     }
     V w = c_w, l = c_l;
-    if (!from_rest) {
+    const auto add_parent = [&]() SD_INLINE_LAMBDA {
       V Xa_w = F::load(parent.angular), Xa_l = F::load(parent.linear);
       vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), Xa_w, Xa_l);  // a' = X a_λ
       w += Xa_w;                                                                                              //      + c
       l += Xa_l;
-    }
+    };
     if (j.nv == 1) {
       V U_w, U_v;
       F::load_halves(data.U[i].data(), U_w, U_v);
       S qdd_i;
-      if (model.parent[i] == 0 && !from_rest) {  // a_0 is known from the start
+      const bool a_prime_first = model.parent[i] == 0 && !from_rest;  // a_0 is known from the start
+      if (a_prime_first) {
+        add_parent();
         qdd_i = data.D_inv[i](0, 0) * (u[i][0] - (F::dot(U_w, w) + F::dot(U_v, l)));  // q̈ = D⁻¹(u − Uᵀ a')
       } else {
         S u_less_Uc = u[i][0];  // u − Uᵀ c
@@ -272,10 +278,13 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
         }
       }
       qdd[j.idx_v] = qdd_i;
+      if (!data.has_children[i]) continue;
+      if (!a_prime_first && !from_rest) add_parent();
       F::add_axis(j, qdd_i, one_dof_rotates(j) ? w : l);                                  // a = a' + S q̈
       F::store(w, a[i].angular);
       F::store(l, a[i].linear);
     } else {
+      if (!from_rest) add_parent();
       F::store(w, a[i].angular);
       F::store(l, a[i].linear);
       const Vector6<S> qdd_i = data.D_inv[i] * (u[i] - data.U[i].transpose() * a[i].toVector());  // zero past nv

@@ -47,6 +47,10 @@ struct Data {
   std::vector<Matrix6<S>> D_inv;            // (Sᵀ Iᴬ S)^-1 (top-left nv × nv block used)
   std::vector<ForceVector<S>> XtU_D_inv;    // ^iX_λᵀ U D⁻¹ (1-DoF joint, moving parent): q̈ = D⁻¹(u − Uᵀ c) − (Xᵀ U D⁻¹)ᵀ a_λ
   std::vector<Vector6<S>> u;                // τ − Sᵀ pᴬ (first nv entries used)
+  // From the tree's shape: whether a body has children, and whether it is the first of its
+  // parent's children that the inward pass reaches (the one of highest index). A leaf's Iᴬ = I is
+  // stored by the outward pass; a parent's is started by its first child's step, as I_λ + Xᵀ Iᵃ X.
+  std::vector<unsigned char> has_children, first_child;
   // The ABA's gravity split (algorithms/gravity_split.hpp), in WiderScalar<S>: per body the
   // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
   // subtree rooted at the body; entry 0 holds the base's gravity. Then τ − τ_g(q) rounded to S.
@@ -112,6 +116,8 @@ struct Data {
         D_inv(model.nbodies(), Matrix6<S>::Zero()),
         XtU_D_inv(model.nbodies(), ForceVector<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
+        has_children(model.nbodies(), 0),
+        first_child(model.nbodies(), 0),
         gravity_split(model.nbodies()),
         tau_less_gravity(VectorX<S>::Zero(model.nv)),
         crba(model.nbodies()),
@@ -129,6 +135,10 @@ struct Data {
         llt(model.nv) {
     for (int i = 1; i < model.nbodies(); ++i)
       if (angle_coordinate(model.joints[i]) >= 0) angle_bodies.push_back(i);
+    for (int i = model.nbodies() - 1; i >= 1; --i) {
+      first_child[i] = !has_children[model.parent[i]];
+      has_children[model.parent[i]] = 1;
+    }
     for (int i = 1; i < model.nbodies(); ++i) {
       const Joint<S>& j = model.joints[i];
       const bool revolute = j.type == JointType::Revolute && !j.coupled;

@@ -81,8 +81,8 @@ SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom, b
     rows03 += load(column);
     rows45 += _mm_loadu_pd(column + 4);
   }
-  std::memcpy(column, &rows03, sizeof rows03);
-  _mm_storeu_pd(column + 4, rows45);
+  store4(rows03, column);
+  store2(rows45, column + 4);
 }
 
 /// One of the last three columns of a 6×6 matrix += (top ; bottom), or = with `add` false:
@@ -94,27 +94,48 @@ SD_INLINE void add_to_right_column(double* column, Packed3 top, Packed3 bottom, 
     rows01 += _mm_loadu_pd(column);
     rows25 += load(column + 2);
   }
-  _mm_storeu_pd(column, rows01);
-  std::memcpy(column + 2, &rows25, sizeof rows25);
+  store2(rows01, column);
+  store4(rows25, column + 2);
 }
 
-/// The rigid inertia [Ī_O h×; −h× m1] (eq. 25) of mass m and first moment h as a 6×6 matrix,
-/// stored as the inward step reads and adds to it.
+/// The rigid inertia [Ī_O h×; −h× m1] (eq. 25) of mass m and first moment h by its six columns'
+/// halves (top ; bottom), as store_columns_6x6 takes them.
+struct RigidColumns {
+  Packed3 top[6], bottom[6];
+};
+SD_INLINE RigidColumns rigid_columns(double mass, const Vector3<double>& first_moment,
+                                     const Matrix3<double>& rotational_inertia) {
+  RigidColumns R;
+  load_columns(rotational_inertia, R.top[0], R.top[1], R.top[2]);
+  const Packed3 h = load3(first_moment);
+  // h× by its columns (0, h₂, −h₁), (−h₂, 0, h₀), (h₁, −h₀, 0): h's lanes permuted, then signed
+  // (the zero lanes and the pad by 0); −h× by the opposite signs. m1 by its columns m e_k.
+  const Packed3 h021 = __builtin_shuffle(h, LaneIndex{0, 2, 1, 3}), h210 = __builtin_shuffle(h, LaneIndex{2, 1, 0, 3}),
+                h102 = __builtin_shuffle(h, LaneIndex{1, 0, 2, 3});
+  R.top[3] = h021 * Packed3{0.0, 1.0, -1.0, 0.0};
+  R.top[4] = h210 * Packed3{-1.0, 0.0, 1.0, 0.0};
+  R.top[5] = h102 * Packed3{1.0, -1.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k) R.bottom[k] = -R.top[3 + k];
+  const Packed3 m = splat(mass);
+  R.bottom[3] = m * Packed3{1.0, 0.0, 0.0, 0.0};
+  R.bottom[4] = m * Packed3{0.0, 1.0, 0.0, 0.0};
+  R.bottom[5] = m * Packed3{0.0, 0.0, 1.0, 0.0};
+  return R;
+}
+
+/// The six columns (top ; bottom) into a 6×6 matrix, or added to it with `add`.
+SD_INLINE void store_columns_6x6(const Packed3 (&top)[6], const Packed3 (&bottom)[6], Matrix6<double>& out, bool add) {
+  double* o = out.data();
+  for (int k = 0; k < 3; ++k) add_to_left_column(o + 6 * k, top[k], bottom[k], add);
+  for (int k = 3; k < 6; ++k) add_to_right_column(o + 6 * k, top[k], bottom[k], add);
+}
+
+/// The rigid inertia of mass m and first moment h as a 6×6 matrix, stored as the inward step
+/// reads and adds to it.
 SD_INLINE void store_rigid(double mass, const Vector3<double>& first_moment, const Matrix3<double>& rotational_inertia,
                            Matrix6<double>& out) {
-  Packed3 I0, I1, I2;
-  load_columns(rotational_inertia, I0, I1, I2);
-  const Packed3 h = load3(first_moment), minus_h = -h;  // lane 3: ±0
-  // h× by its columns (0, h₂, −h₁), (−h₂, 0, h₀), (h₁, −h₀, 0); −h× the same from −h.
-  const LaneIndex hx0{3, 2, 5, 3}, hx1{6, 3, 0, 3}, hx2{1, 4, 3, 3};
-  const Packed3 m = splat(mass), zero = splat(0.0);
-  double* o = out.data();
-  add_to_left_column(o, I0, __builtin_shuffle(minus_h, h, hx0), false);
-  add_to_left_column(o + 6, I1, __builtin_shuffle(minus_h, h, hx1), false);
-  add_to_left_column(o + 12, I2, __builtin_shuffle(minus_h, h, hx2), false);
-  add_to_right_column(o + 18, __builtin_shuffle(h, minus_h, hx0), __builtin_shuffle(m, zero, LaneIndex{0, 4, 4, 4}), false);
-  add_to_right_column(o + 24, __builtin_shuffle(h, minus_h, hx1), __builtin_shuffle(m, zero, LaneIndex{4, 0, 4, 4}), false);
-  add_to_right_column(o + 30, __builtin_shuffle(h, minus_h, hx2), __builtin_shuffle(m, zero, LaneIndex{4, 4, 0, 4}), false);
+  const RigidColumns R = rigid_columns(mass, first_moment, rotational_inertia);
+  store_columns_6x6(R.top, R.bottom, out, false);
 }
 
 /// A rank-one term W Vᵀ of a 6×6 matrix, W = (w_top ; w_bottom) and V = (v_top ; v_bottom).
@@ -122,20 +143,20 @@ struct RankOne {
   Packed3 w_top, w_bottom, v_top, v_bottom;
 };
 
-/// out += Xᵀ [A B; Bᵀ C] X (− W Vᵀ where `downdate` is given) for X = (E, r) (plucker_transform.hpp):
+/// out += Xᵀ [A B; Bᵀ C] X (− W Vᵀ where `downdate` is given) for X = (E, r) (plucker_transform.hpp),
+/// or out = base + … where `base` is given (a rigid inertia, so that out need not hold it first):
 /// with A' = Eᵀ A E, B' = Eᵀ B E, C' = Eᵀ C E and G = B' + r×C', the blocks [A' − G r× + r×B'ᵀ, G ;
-/// Gᵀ, C'] — column k of G r× is G (r × e_k), column k of r×B'ᵀ is r × (row k of B'). With `axis`
+/// Gᵀ, C'] — column k of G r× is G (r × e_k), column k of r×B'ᵀ is r × (row k of B'), and Gᵀ is
+/// formed as B'ᵀ − C' r× (sums of columns, where r×C' by columns would be three cross products). With `axis`
 /// 0–2, E is the rotation about that coordinate axis by the angle of sine s and cosine c, and its
 /// three products take the lanes it mixes (rotate_about_axis) instead of E's nine coefficients.
 SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& r, InertiaBlocks I,
                                Matrix6<double>& out, int axis = -1, double s = 0, double c = 1,
-                               const RankOne* downdate = nullptr) {
-  Packed3 B0, B1, B2;  // B'; I.B then holds B'ᵀ
+                               const RankOne* downdate = nullptr, const RigidColumns* base = nullptr) {
   if (axis < 0) {
     rotate_transposed(E.data(), I.A);  // A' (symmetric)
     rotate_transposed(E.data(), I.C);  // C'
     rotate_transposed(E.data(), I.B);  // B'ᵀ
-    transpose(I.B[0], I.B[1], I.B[2], B0, B1, B2);
   } else {
     with_axis(axis, [&](auto k) SD_INLINE_LAMBDA {
       const AxisRotation<decltype(k)::value> rotation(s, c);
@@ -143,16 +164,17 @@ SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& 
       rotate_about_axis(rotation, s, c, I.C);  // C'
       rotate_about_axis(rotation, s, c, I.B);  // B'
     });
-    B0 = I.B[0];
-    B1 = I.B[1];
-    B2 = I.B[2];
-    transpose(B0, B1, B2, I.B[0], I.B[1], I.B[2]);
+    transpose(I.B[0], I.B[1], I.B[2], I.B[0], I.B[1], I.B[2]);  // B'ᵀ
   }
-  const Packed3 rr = load3(r);
-  Packed3 G0 = B0 + cross(rr, I.C[0]), G1 = B1 + cross(rr, I.C[1]), G2 = B2 + cross(rr, I.C[2]);
-  Packed3 Gt0, Gt1, Gt2;  // rows of G
-  transpose(G0, G1, G2, Gt0, Gt1, Gt2);
+  // Gᵀ = B'ᵀ + (r×C')ᵀ = B'ᵀ − C' r× (C' symmetric): column k of C' r× is C' (r × e_k), a sum of
+  // C''s columns; G r× likewise of G's.
   const Packed3 r0 = splat(r.x()), r1 = splat(r.y()), r2 = splat(r.z());
+  Packed3 Gt0 = I.B[0] - (I.C[1] * r2 - I.C[2] * r1);  // C' (r × e₀) = r₂ C'₁ − r₁ C'₂
+  Packed3 Gt1 = I.B[1] - (I.C[2] * r0 - I.C[0] * r2);  // C' (r × e₁) = r₀ C'₂ − r₂ C'₀
+  Packed3 Gt2 = I.B[2] - (I.C[0] * r1 - I.C[1] * r0);  // C' (r × e₂) = r₁ C'₀ − r₀ C'₁
+  Packed3 G0, G1, G2;
+  transpose(Gt0, Gt1, Gt2, G0, G1, G2);
+  const Packed3 rr = load3(r);
   Packed3 TL0 = I.A[0] - (G1 * r2 - G2 * r1) + cross(rr, I.B[0]);  // G (r × e₀) = r₂ G₁ − r₁ G₂
   Packed3 TL1 = I.A[1] - (G2 * r0 - G0 * r2) + cross(rr, I.B[1]);  // G (r × e₁) = r₀ G₂ − r₂ G₀
   Packed3 TL2 = I.A[2] - (G0 * r1 - G1 * r0) + cross(rr, I.B[2]);  // G (r × e₂) = r₁ G₀ − r₀ G₁
@@ -173,13 +195,14 @@ SD_INLINE void add_transformed(const Matrix3<double>& E, const Vector3<double>& 
     I.C[1] -= d.w_bottom * v4;
     I.C[2] -= d.w_bottom * v5;
   }
-  double* o = out.data();
-  add_to_left_column(o, TL0, Gt0);
-  add_to_left_column(o + 6, TL1, Gt1);
-  add_to_left_column(o + 12, TL2, Gt2);
-  add_to_right_column(o + 18, G0, I.C[0]);
-  add_to_right_column(o + 24, G1, I.C[1]);
-  add_to_right_column(o + 30, G2, I.C[2]);
+  Packed3 top[6] = {TL0, TL1, TL2, G0, G1, G2}, bottom[6] = {Gt0, Gt1, Gt2, I.C[0], I.C[1], I.C[2]};
+  if (base) {
+    for (int k = 0; k < 6; ++k) {
+      top[k] += base->top[k];
+      bottom[k] += base->bottom[k];
+    }
+  }
+  store_columns_6x6(top, bottom, out, !base);
 }
 
 }  // namespace packed3

@@ -149,14 +149,20 @@ struct PluckerTransform {
     applyInverseAdd(Ia, out);
     return out;
   }
-  /// out += Xᵀ Iᴬ X: the ABA's inward accumulation without a temporary 6×6 matrix.
-  SD_INLINE void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
+  /// out += Xᵀ Iᴬ X: the ABA's inward accumulation without a temporary 6×6 matrix; with
+  /// `out_base`, out = *out_base + Xᵀ Iᴬ X (the first child's step, out's rigid inertia not yet in it).
+  SD_INLINE void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out,
+                                 const RigidInertia<S>* out_base = nullptr) const {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<S, double>::value) {
-      packed3::add_transformed(E, r, packed3::load_blocks(Ia.matrix), out.matrix);
+      packed3::RigidColumns base;
+      if (out_base) base = packed3::rigid_columns(out_base->mass, out_base->first_moment, out_base->rotational_inertia);
+      packed3::add_transformed(E, r, packed3::load_blocks(Ia.matrix), out.matrix, -1, 0, 1, nullptr,
+                               out_base ? &base : nullptr);
       return;
     }
 #endif
+    if (out_base) out.assign(*out_base);
     const Matrix3<S> Et = E.transpose();
     const Matrix3<S> A = Et * Ia.matrix.template topLeftCorner<3, 3>() * E;
     const Matrix3<S> B = Et * Ia.matrix.template topRightCorner<3, 3>() * E;
@@ -180,12 +186,14 @@ struct PluckerTransform {
   /// to the parent as a force), so that the transform of Iᴬ does not wait for D⁻¹. U = (U_w ; U_v)
   /// and W = (W_n ; W_f) by their halves, as the caller's 3-vectors hold them (V: packed3's
   /// registers for double where SD_PACKED3 is defined, else Vector3<S>). `about` may tell that E
-  /// is a rotation about a coordinate axis (the packed products then take its structure).
+  /// is a rotation about a coordinate axis (the packed products then take its structure). With
+  /// `out_base`, out = *out_base + Xᵀ Iᵃ X, as applyInverseAdd.
   template <class V>
   SD_INLINE ForceVector<S> applyInverseAddLessRankOne(const ArticulatedInertia<S>& Ia, const V& U_w, const V& U_v,
                                                       const S& D_inv, const V& W_n, const V& W_f,
                                                       const MotionVector<S>& c, ArticulatedInertia<S>& out,
-                                                      const RotationAboutAxis<S>& about = {}) const {
+                                                      const RotationAboutAxis<S>& about = {},
+                                                      const RigidInertia<S>* out_base = nullptr) const {
 #ifdef SD_PACKED3
     if constexpr (std::is_same<V, packed3::Packed3>::value) {
       using namespace packed3;
@@ -194,7 +202,9 @@ struct PluckerTransform {
       times_motion(blocks, c.angular.data(), c.linear.data(), top, bottom);
       const Packed3 d = splat(D_inv);
       const RankOne downdate{W_n, W_f, W_n * d, W_f * d};  // W D⁻¹ Wᵀ
-      add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c, &downdate);
+      RigidColumns base;
+      if (out_base) base = rigid_columns(out_base->mass, out_base->first_moment, out_base->rotational_inertia);
+      add_transformed(E, r, blocks, out.matrix, about.axis, about.s, about.c, &downdate, out_base ? &base : nullptr);
       const Packed3 uc = U_w * load3(c.angular) + U_v * load3(c.linear);
       const Packed3 k = splat(D_inv * (uc[0] + uc[1] + uc[2]));                // D⁻¹ Uᵀ c
       return {to_vector3(top - U_w * k), to_vector3(bottom - U_v * k)};         // Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c
@@ -205,7 +215,7 @@ struct PluckerTransform {
       Vector6<S> U, W;
       U << U_w, U_v;
       W << W_n, W_f;
-      applyInverseAdd(Ia, out);
+      applyInverseAdd(Ia, out, out_base);
       out.matrix -= W * (D_inv * W.transpose());
       return ForceVector<S>((Ia * c).toVector() - U * (D_inv * U.dot(c.toVector())));
     }
