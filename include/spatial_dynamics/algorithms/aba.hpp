@@ -86,18 +86,15 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
       cw = F::load(cJ.angular) + F::cross(w, jw);
       cv = F::load(cJ.linear) + (F::cross(w, jv) + F::cross(v, jw));
     }
-    F::store(w, data.v[i].angular);
-    F::store(v, data.v[i].linear);
-    F::store(cw, data.c[i].angular);
-    F::store(cv, data.c[i].linear);
+    F::store_six(w, v, data.v[i]);
+    F::store_six(cw, cv, data.c[i]);
     V n, f;  // pᴬ_i = v ×* I v − f_ext (eq. 29)
     F::bias_force(model.inertia[i], w, v, n, f);
     if (f_ext) {
       n -= F::load(f_ext[i].angular);
       f -= F::load(f_ext[i].linear);
     }
-    F::store(n, data.f[i].angular);
-    F::store(f, data.f[i].linear);
+    F::store_six(n, f, data.f[i]);
     if (!data.has_children[i]) data.IA[i].assign(model.inertia[i]);              // Iᴬ_i = I_i
   }
 }
@@ -161,8 +158,7 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   V W_n = U_w, W_f = U_v;  // W = Xᵀ U, U taken to the parent as a force (eq. 12)
   vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), W_n, W_f);
   ForceVector<S>& W_D_inv = data.XtU_D_inv[i];  // for pass 3's q̈ = D⁻¹(u − Uᵀ c) − (W D⁻¹)ᵀ a_λ
-  F::store(W_n * D_inv, W_D_inv.angular);
-  F::store(W_f * D_inv, W_D_inv.linear);
+  F::store_six(W_n * D_inv, W_f * D_inv, W_D_inv);
   return X.applyInverseAddLessRankOne(data.IA[i], U_w, U_v, D_inv, W_n, W_f, data.c[i], data.IA[lambda],
                                       body_up_rotation(data, i), data.first_child[i] ? &model.inertia[lambda] : nullptr);
 }
@@ -205,8 +201,7 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
   const PluckerTransform<S>& X = data.X_up[i];
   vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), n, f);
   ForceVector<S>& parent = p[lambda];
-  F::store(F::load(parent.angular) + n, parent.angular);
-  F::store(F::load(parent.linear) + f, parent.linear);
+  F::store_six(F::load(parent.angular) + n, F::load(parent.linear) + f, parent);
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I at the leaves and f = pᴬ;
@@ -281,12 +276,10 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
       if (!data.has_children[i]) continue;
       if (!a_prime_first && !from_rest) add_parent();
       F::add_axis(j, qdd_i, one_dof_rotates(j) ? w : l);                                  // a = a' + S q̈
-      F::store(w, a[i].angular);
-      F::store(l, a[i].linear);
+      F::store_six(w, l, a[i]);
     } else {
       if (!from_rest) add_parent();
-      F::store(w, a[i].angular);
-      F::store(l, a[i].linear);
+      F::store_six(w, l, a[i]);
       const Vector6<S> qdd_i = data.D_inv[i] * (u[i] - data.U[i].transpose() * a[i].toVector());  // zero past nv
       for (int k = 0; k < j.nv; ++k) qdd[j.idx_v + k] = qdd_i[k];
       a[i] += joint_motion(j, data.joint_sin[i], data.joint_cos[i], qdd_i.data());  // a = a' + S q̈

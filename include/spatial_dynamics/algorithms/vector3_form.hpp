@@ -50,6 +50,12 @@ struct OneStateJointTerms {
       bottom += bottom_k * j.axis[k];
     }
   }
+  /// (top ; bottom) into a motion or force vector's halves, angular then linear (contiguous).
+  template <class V, class SixVector>
+  static SD_INLINE void store_six(const V& top, const V& bottom, SixVector& x) {
+    static_assert(sizeof(SixVector) == 6 * sizeof(S), "the halves of a 6-vector are contiguous");
+    F::store_halves(top, bottom, x.angular.data());
+  }
   /// What is known of ^iX_λ(i)'s rotation (joint_kernels.hpp's body_up_rotation).
   static SD_INLINE RotationAboutAxis<S> up_rotation(const Data<S>& data, int i) { return body_up_rotation(data, i); }
   template <class V>
@@ -213,8 +219,9 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
     top = packed3::load(p);
     bottom = packed3::load_after(p + 2);
   }
+  /// The top half as four lanes (its pad on p[3], which the bottom half then overwrites).
   static SD_INLINE void store_halves(const Vector& top, const Vector& bottom, S* p) {
-    packed3::store3(top, p);
+    packed3::store4(top, p);
     packed3::store3(bottom, p + 3);
   }
   static SD_INLINE Vector times(const Rotation& R, const Vector& x) { return packed3::mat_vec(R.c0, R.c1, R.c2, x); }
@@ -276,7 +283,8 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
     return load(b.r);
   }
 
-  static SD_INLINE Vector axis(const Joint<S>& j) { return packed3::make(j.axis.x(), j.axis.y(), j.axis.z()); }
+  /// The joint's axis; lane 3 reads the member after it (plane_x), inside the struct.
+  static SD_INLINE Vector axis(const Joint<S>& j) { return packed3::load(j.axis.data()); }
   /// k a, and R a (a column of R for a coordinate axis).
   static SD_INLINE Vector axis_times(const Joint<S>& j, const S& k) { return k * axis(j); }
   static SD_INLINE Vector times_axis(const Rotation& R, const Joint<S>& j) {

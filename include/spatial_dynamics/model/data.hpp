@@ -26,7 +26,8 @@ struct Data {
   std::vector<PluckerTransform<S>> X_frame_base;  // ^FX_0 for every model frame
   std::vector<MotionVector<S>> v;           // body velocities (body coordinates)
   std::vector<MotionVector<S>> a;           // body accelerations (bias-free in RNEA, c-free in ABA;
-                                            // without gravity where the ABA splits it off)
+                                            // without gravity where the ABA splits it off; the ABA
+                                            // forms none at a leaf)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations v_i × S_i q̇_i (ABA)
   std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
   // Joints with an angle (revolute, planar): the bodies they move, and sin and cos of each
