@@ -52,14 +52,6 @@ namespace packed3 {
 typedef double Packed3 __attribute__((vector_size(32)));
 typedef long long LaneIndex __attribute__((vector_size(32)));
 
-/// Unaligned four and two doubles in one register, for stores: a store through them may change
-/// doubles only, where memcpy and the intrinsics' stores may change memory of every type, so that
-/// the compiler keeps what it loaded of other types (the per-body arrays' addresses) in registers.
-typedef double UnalignedPacked3 __attribute__((vector_size(32), aligned(8)));
-typedef double UnalignedPair __attribute__((vector_size(16), aligned(8)));
-SD_INLINE void store4(Packed3 x, double* p) { *reinterpret_cast<UnalignedPacked3*>(p) = x; }
-SD_INLINE void store2(__m128d x, double* p) { *reinterpret_cast<UnalignedPair*>(p) = (UnalignedPair)x; }
-
 /// The four doubles from p on (lane 3 is the pad); p need not be aligned.
 SD_INLINE Packed3 load(const double* p) {
   Packed3 x;
@@ -73,7 +65,10 @@ SD_INLINE Packed3 load_after(const double* p) { return __builtin_shuffle(load(p)
 
 SD_INLINE Packed3 load(const Packed3Storage& s) { return load(s.lane); }
 
-SD_INLINE void store(Packed3 x, Packed3Storage& s) { store4(x, s.lane); }
+SD_INLINE void store(Packed3 x, Packed3Storage& s) { std::memcpy(s.lane, &x, sizeof x); }
+
+/// The four lanes into p[0..3]; p need not be aligned.
+SD_INLINE void store4(Packed3 x, double* p) { std::memcpy(p, &x, sizeof x); }
 
 /// A 3-vector from exactly three doubles (two loads: nothing past p[2] is read; pad 0).
 SD_INLINE Packed3 load3(const double* p) {
@@ -82,8 +77,8 @@ SD_INLINE Packed3 load3(const double* p) {
 SD_INLINE Packed3 load3(const Vector3<double>& v) { return load3(v.data()); }
 /// Lanes 0–2 into exactly three doubles.
 SD_INLINE void store3(Packed3 x, double* p) {
-  store2(_mm256_castpd256_pd128((__m256d)x), p);
-  p[2] = x[2];
+  _mm_storeu_pd(p, _mm256_castpd256_pd128((__m256d)x));
+  _mm_store_sd(p + 2, _mm256_extractf128_pd((__m256d)x, 1));
 }
 SD_INLINE Vector3<double> to_vector3(Packed3 x) {
   Vector3<double> v;

@@ -81,8 +81,8 @@ SD_INLINE void add_to_left_column(double* column, Packed3 top, Packed3 bottom, b
     rows03 += load(column);
     rows45 += _mm_loadu_pd(column + 4);
   }
-  store4(rows03, column);
-  store2(rows45, column + 4);
+  std::memcpy(column, &rows03, sizeof rows03);
+  _mm_storeu_pd(column + 4, rows45);
 }
 
 /// One of the last three columns of a 6×6 matrix += (top ; bottom), or = with `add` false:
@@ -94,8 +94,8 @@ SD_INLINE void add_to_right_column(double* column, Packed3 top, Packed3 bottom, 
     rows01 += _mm_loadu_pd(column);
     rows25 += load(column + 2);
   }
-  store2(rows01, column);
-  store4(rows25, column + 2);
+  _mm_storeu_pd(column, rows01);
+  std::memcpy(column + 2, &rows25, sizeof rows25);
 }
 
 /// The rigid inertia [Ī_O h×; −h× m1] (eq. 25) of mass m and first moment h by its six columns'
