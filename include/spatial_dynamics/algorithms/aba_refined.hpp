@@ -83,7 +83,7 @@ struct RefinementWorkspace {
         u(model.nbodies(), Vector6<S>::Zero()),
         residual(VectorX<S>::Zero(model.nv)),
         delta(VectorX<S>::Zero(model.nv)),
-        wide_work(model.nbodies()),
+        wide_work(model),
         wide_form_takes_model(wide_residual_form_takes(model)) {}
 };
 

@@ -2,35 +2,26 @@
 // τ − ID(q, q̇, x) and its products M δ (aba_refined.hpp). The model's constants stay doubles
 // (the wide model holds the same values: Model::cast is exact), so each product with one is a
 // double times a double-double; the state, the joint angles' sines and cosines and every 3-vector
-// are double-double, three lanes at once in two registers (packed3_double_double.hpp). ^iX_λ is
-// applied as its two factors, E_J(q) (E_tree x) and E_treeᵀ (E_Jᵀ y) (RBDA Table 4.1), the joint's
-// rotation in double-double and the tree's in double. Taken where SD_PACKED3 is defined, for
-// models whose joints all have one coordinate and none is coupled; other models take the RNEA on
-// Model<DoubleDouble> (vector3_form.hpp's ScalarForm).
+// are double-double, three lanes at once in two registers (packed3_double_double.hpp). ^iX_λ's
+// rotation E = E_J(q) E_tree (RBDA Table 4.1) is formed once per body in double-double, from
+// terms of the model's computed when the work is set up: E = B0 + c B1 + s B2 (Rodrigues'
+// formula, RBDA eq. 2.24, times E_tree); where the joint rotates about a coordinate axis and the
+// tree transform does not rotate (Data::up_rotation_axis), E's products mix two lanes
+// (WideAxisRotation). Taken where SD_PACKED3 is defined, for models whose joints all have one
+// coordinate and none is coupled; other models take the RNEA on Model<DoubleDouble>
+// (vector3_form.hpp's ScalarForm).
 #pragma once
 
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
+#include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/double_double.hpp"
 #include "spatial_dynamics/spatial/wide_vector3.hpp"
 
 namespace spatial_dynamics {
-
-/// The residual RNEA's per-body buffers (one layout in every build): v, a, f and ^iX_λ's r in
-/// double-double, the joint angle's sine and cosine, and for the inward pass the joint and its
-/// tree rotation (the model's).
-struct WideResidualWork {
-  struct Body {
-    WideVector3Storage<double> w, v, aw, al, n, f, r;
-    DoubleDouble sin, cos;
-    const Joint<double>* joint = nullptr;
-    const Matrix3<double>* tree_E = nullptr;
-  };
-  std::vector<Body> rnea;
-  explicit WideResidualWork(int bodies) : rnea(bodies) {}
-};
 
 /// Whether the residual RNEA of this file can take the model (where SD_PACKED3 is defined; else
 /// the one on Model<DoubleDouble> does): every joint of one coordinate, none coupled.
@@ -42,6 +33,68 @@ bool wide_residual_form_takes(const Model<S>& model) {
   return true;
 }
 
+/// The residual RNEA's per-body buffers (one layout in every build): v, a, f and ^iX_λ's r in
+/// double-double, Eᵀ by its columns (E's rows) for the inward pass, the joint angle's sine and
+/// cosine, and the coordinate axis of E (coordinate_axis_of_up_rotation; −1: none). Per body of
+/// a model the form takes, E's terms B0 = a aᵀ E_tree, B1 = E_tree − B0 and B2 = −a× E_tree by
+/// their columns in double-double (a prismatic joint's E_tree, 0 and 0).
+struct WideResidualWork {
+  struct Body {
+    WideVector3Storage<double> w, v, aw, al, n, f, r, Et0, Et1, Et2;
+    DoubleDouble sin = DoubleDouble(0.0), cos = DoubleDouble(1.0);
+    int axis = -1;
+  };
+  struct RotationTerms {
+    WideVector3Storage<double> B0[3], B1[3], B2[3];
+  };
+  std::vector<Body> rnea;
+  std::vector<RotationTerms> rotation_terms;
+
+  template <class S>
+  explicit WideResidualWork(const Model<S>& model) : rnea(model.nbodies()) {
+    if constexpr (std::is_same<S, double>::value) {
+      if (!wide_residual_form_takes(model)) return;
+      rotation_terms.resize(model.nbodies());
+      for (int i = 1; i < model.nbodies(); ++i) set_up_body(model, i);
+    }
+  }
+
+ private:
+  static void store(const DoubleDouble (&x)[3], WideVector3Storage<double>& s) {
+    for (int k = 0; k < 3; ++k) {
+      s.hi.lane[k] = x[k].hi;
+      s.lo.lane[k] = x[k].lo;
+    }
+    s.hi.lane[3] = s.lo.lane[3] = 0.0;
+  }
+  void set_up_body(const Model<double>& model, int i) {
+    using DD = DoubleDouble;
+    const Joint<double>& j = model.joints[i];
+    const Matrix3<double>& E_tree = model.X_tree[i].E;
+    rnea[i].axis = coordinate_axis_of_up_rotation(model, i);
+    const Vector3<double>& a = j.axis;
+    for (int k = 0; k < 3; ++k) {  // column k of each, from E_tree's column t
+      const Vector3<double> t = E_tree.col(k);
+      const DD a_dot_t = (DD(a[0]) * t[0] + DD(a[1]) * t[1]) + DD(a[2]) * t[2];
+      DD b0[3], b1[3], b2[3];
+      for (int m = 0; m < 3; ++m) {
+        if (j.type != JointType::Revolute) {
+          b0[m] = t[m];
+          b1[m] = b2[m] = 0.0;
+          continue;
+        }
+        b0[m] = a_dot_t * a[m];                         // a aᵀ t
+        b1[m] = DD(t[m]) - b0[m];                       // t − a aᵀ t
+        const int m1 = (m + 1) % 3, m2 = (m + 2) % 3;
+        b2[m] = DD(a[m2]) * t[m1] - DD(a[m1]) * t[m2];  // −a × t
+      }
+      store(b0, rotation_terms[i].B0[k]);
+      store(b1, rotation_terms[i].B1[k]);
+      store(b2, rotation_terms[i].B2[k]);
+    }
+  }
+};
+
 #ifdef SD_PACKED3
 namespace vec3 {
 
@@ -50,18 +103,10 @@ struct WideResidualForm {
   using S = double;
   using Scalar = DoubleDouble;
   using Vector = packed3::PackedDoubleDouble;
-  /// ^iX_λ's E = E_J E_tree (transposed: E_treeᵀ E_Jᵀ): the tree's columns (its rows when
-  /// transposed) and the joint's rotation by the angle of sine s and cosine c about its axis
-  /// (none for a prismatic joint; −s when transposed).
+  /// ^iX_λ's E by its columns (Eᵀ's in the inward pass), formed where E does not rotate about a
+  /// coordinate axis alone (the body's axis −1).
   struct Rotation {
-    packed3::Packed3 c0, c1, c2;
-    const Joint<double>* joint;
-    DoubleDouble s, c;
-    bool transposed;
-  };
-  /// The passes' RotationAboutAxis: the rotation's structure is in Rotation itself.
-  struct NoRotationStructure {
-    friend NoRotationStructure transposed(NoRotationStructure none) { return none; }
+    Vector c0, c1, c2;
   };
 
   static SD_INLINE Vector load(const Vector3<S>& v) { return {packed3::load3(v), packed3::Packed3{}}; }
@@ -75,69 +120,61 @@ struct WideResidualForm {
   /// The joint's axis a (double), and k a for a double-double k.
   static SD_INLINE packed3::Packed3 axis(const Joint<S>& j) { return packed3::make(j.axis.x(), j.axis.y(), j.axis.z()); }
   static SD_INLINE Vector axis_times(const Joint<S>& j, const Scalar& k) { return packed3::scale(axis(j), packed3::splat(k)); }
-
-  /// y ← E_J y: c y − s (a × y) + (1 − c)(a · y) a (RBDA eq. 2.24 transposed, Rodrigues), by −s
-  /// when transposed.
-  static SD_INLINE Vector joint_rotation(const Rotation& R, const Vector& y) {
-    const Joint<S>& j = *R.joint;
-    if (j.type != JointType::Revolute) return y;
-    const packed3::Packed3 a = axis(j);
-    const DoubleDouble s = R.transposed ? -R.s : R.s;
-    const Vector a_dot_y_a = packed3::scale(a, packed3::splat(lane_sum_product(a, y)));
-    return packed3::splat(R.c) * y - packed3::splat(s) * packed3::cross(a, y) +
-           packed3::splat(DoubleDouble(1.0) - R.c) * a_dot_y_a;
-  }
   /// a · y for double a.
   static SD_INLINE DoubleDouble lane_sum_product(packed3::Packed3 a, const Vector& y) {
     return packed3::lane_sum(packed3::scale(a, y));
   }
-  static SD_INLINE Vector times(const Rotation& R, const Vector& x) {
-    if (R.transposed) return packed3::mat_vec(R.c0, R.c1, R.c2, joint_rotation(R, x));
-    return joint_rotation(R, packed3::mat_vec(R.c0, R.c1, R.c2, x));
-  }
+
+  /// What the passes know of E beyond its columns (the body's axis, sine and cosine).
   template <class Work>
-  static SD_INLINE NoRotationStructure up_rotation(const Work&, int) {
-    return {};
+  static SD_INLINE RotationAboutAxis<Scalar> up_rotation(const Work& work, int i) {
+    const auto& b = work.rnea[i];
+    return {b.axis, b.sin, b.cos};
   }
-  static SD_INLINE void times_pair(NoRotationStructure, const Rotation& E, Vector& x, Vector& y) {
-    x = times(E, x);
-    y = times(E, y);
+  /// x ← E x and y ← E y: by the two lanes E mixes where `about` tells that it rotates about a
+  /// coordinate axis (WideAxisRotation), else by E's columns.
+  static SD_INLINE void times_pair(const RotationAboutAxis<Scalar>& about, const Rotation& E, Vector& x, Vector& y) {
+    if (about.axis >= 0) {
+      packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
+        const packed3::WideAxisRotation<decltype(k)::value> rotation(about.s, about.c);
+        x = rotation.times(x);
+        y = rotation.times(y);
+      });
+      return;
+    }
+    x = packed3::mat_vec(E.c0, E.c1, E.c2, x);
+    y = packed3::mat_vec(E.c0, E.c1, E.c2, y);
   }
 
-  /// ^iX_λ's E and r (r = r_tree + E_treeᵀ (q a) for a prismatic joint); the body keeps the
-  /// joint's sine and cosine, set before (WideResidualWork).
+  /// ^iX_λ's E = B0 + c B1 + s B2 by its columns, its rows into the body for the inward pass
+  /// (where the body's axis is −1), and r (r = r_tree + E_treeᵀ (q a) for a prismatic joint); the
+  /// body holds the joint's sine and cosine, set before (a prismatic joint's stay 0 and 1).
   template <class Work, class Body>
-  static SD_INLINE void up_transform(const Model<S>& model, Work&, int i, const Scalar* q, Body& b, Rotation& E,
+  static SD_INLINE void up_transform(const Model<S>& model, Work& work, int i, const Scalar* q, Body& b, Rotation& E,
                                      Vector& r) {
     const Joint<S>& j = model.joints[i];
     const PluckerTransform<S>& Xt = model.X_tree[i];
-    packed3::load_columns(Xt.E, E.c0, E.c1, E.c2);
-    E.joint = &j;
-    E.s = b.sin;
-    E.c = b.cos;
-    E.transposed = false;
-    r = load(Xt.r);
-    if (j.type == JointType::Prismatic) {
-      packed3::Packed3 t0, t1, t2;  // E_treeᵀ by its columns
-      packed3::transpose(E.c0, E.c1, E.c2, t0, t1, t2);
-      r += packed3::mat_vec(t0, t1, t2, axis_times(j, q[j.idx_q]));
+    if (b.axis < 0) {
+      const auto& terms = work.rotation_terms[i];
+      const Vector c = packed3::splat(b.cos), s = packed3::splat(b.sin);
+      const auto column = [&](int k) SD_INLINE_LAMBDA { return load(terms.B0[k]) + c * load(terms.B1[k]) + s * load(terms.B2[k]); };
+      E = {column(0), column(1), column(2)};
+      Rotation Et;
+      packed3::transpose(E.c0.hi, E.c1.hi, E.c2.hi, Et.c0.hi, Et.c1.hi, Et.c2.hi);
+      packed3::transpose(E.c0.lo, E.c1.lo, E.c2.lo, Et.c0.lo, Et.c1.lo, Et.c2.lo);
+      store(Et.c0, b.Et0);
+      store(Et.c1, b.Et1);
+      store(Et.c2, b.Et2);
     }
+    r = load(Xt.r);
+    if (j.type == JointType::Prismatic) r += packed3::transposed_columns(Xt.E) * axis_times(j, q[j.idx_q]);
     store(r, b.r);
-    b.joint = &j;
-    b.tree_E = &Xt.E;
   }
-  /// Eᵀ = E_treeᵀ E_Jᵀ from what up_transform left in the body, and r.
+  /// Eᵀ by its columns from the body (where its axis is −1), and r.
   template <class Body>
   static SD_INLINE Rotation transposed_rotation(const Body& b) {
-    Rotation Et;
-    const packed3::Columns rows = packed3::transposed_columns(*b.tree_E);
-    Et.c0 = rows.c0;
-    Et.c1 = rows.c1;
-    Et.c2 = rows.c2;
-    Et.joint = b.joint;
-    Et.s = b.sin;
-    Et.c = b.cos;
-    Et.transposed = true;
+    Rotation Et{};
+    if (b.axis < 0) Et = {load(b.Et0), load(b.Et1), load(b.Et2)};
     return Et;
   }
   template <class Body>
@@ -146,10 +183,27 @@ struct WideResidualForm {
   }
 
   static SD_INLINE void add_axis(const Joint<S>& j, const Scalar& k, Vector& x) { x += axis_times(j, k); }
+  /// x × (k a); for a coordinate axis e_m, x × e_m is swap(x) by the signs of AxisRotation's sv at s = 1.
   static SD_INLINE Vector cross_axis(const Joint<S>& j, const Vector& x, const Scalar& k) {
-    return packed3::splat(k) * packed3::cross(x, axis(j));
+    if (j.axis_kind == AxisKind::General) return packed3::splat(k) * packed3::cross(x, axis(j));
+    Vector x_cross_axis;
+    packed3::with_axis(static_cast<int>(j.axis_kind), [&](auto m) SD_INLINE_LAMBDA {
+      using About = packed3::AxisRotation<decltype(m)::value>;
+      const packed3::Packed3 signs = About(1.0, 0.0).sv;
+      x_cross_axis = {signs * About::swap(x.hi), signs * About::swap(x.lo)};
+    });
+    return packed3::splat(k) * x_cross_axis;
   }
-  static SD_INLINE Scalar dot_axis(const Joint<S>& j, const Vector& x) { return lane_sum_product(axis(j), x); }
+  /// a · x: one lane for a coordinate axis.
+  static SD_INLINE Scalar dot_axis(const Joint<S>& j, const Vector& x) {
+    switch (j.axis_kind) {
+      case AxisKind::X: return {x.hi[0], x.lo[0]};
+      case AxisKind::Y: return {x.hi[1], x.lo[1]};
+      case AxisKind::Z: return {x.hi[2], x.lo[2]};
+      case AxisKind::General: break;
+    }
+    return lane_sum_product(axis(j), x);
+  }
 
   /// I (ω ; v) = (Ī_O ω + h × v ; m v − h × ω)   (eq. 25)
   static SD_INLINE void inertia_times(const RigidInertia<S>& I, const Vector& w, const Vector& v, Vector& n, Vector& f) {

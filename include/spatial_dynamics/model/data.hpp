@@ -18,6 +18,18 @@
 
 namespace spatial_dynamics {
 
+/// The coordinate axis (0–2) about which ^iX_λ(i) rotates, where the joint is revolute (not
+/// coupled) about x, y or z and its tree transform does not rotate (E_tree = 1, so that E is the
+/// joint's rx, ry or rz, RBDA Table 2.2); else −1.
+template <class S>
+int coordinate_axis_of_up_rotation(const Model<S>& model, int i) {
+  const Joint<S>& j = model.joints[i];
+  const bool revolute = j.type == JointType::Revolute && !j.coupled;
+  if (revolute && j.axis_kind != AxisKind::General && model.X_tree[i].E == Matrix3<S>::Identity())
+    return static_cast<int>(j.axis_kind);
+  return -1;
+}
+
 template <class S>
 struct Data {
   // Kinematics, per body.
@@ -146,8 +158,7 @@ struct Data {
       const bool extends = revolute && i > 1 && model.parent[i] == i - 1 && revolute_run_start[i - 1] > 0 &&
                            j.idx_v == model.joints[i - 1].idx_v + 1;
       revolute_run_start[i] = extends ? revolute_run_start[i - 1] : (revolute ? i : 0);
-      if (revolute && j.axis_kind != AxisKind::General && model.X_tree[i].E == Matrix3<S>::Identity())
-        up_rotation_axis[i] = static_cast<int>(j.axis_kind);
+      up_rotation_axis[i] = coordinate_axis_of_up_rotation(model, i);
     }
     // Base coordinates pay off from 4 moving ancestors per body on average, where those form runs
     // of two or more bodies on average (the runs are carried several at a time, crba_base_carry.hpp;

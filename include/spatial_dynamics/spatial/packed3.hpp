@@ -149,15 +149,17 @@ template <int axis>
 struct AxisRotation {
   static constexpr int m = (axis + 1) % 3, n = (axis + 2) % 3;
   Packed3 cv, sv;
-  AxisRotation(double s, double c) {
+  /// `unit` is cv's lane k (and pad): 1, or 0 for the low parts of a double-double rotation
+  /// (packed3_double_double.hpp's WideAxisRotation).
+  AxisRotation(double s, double c, double unit = 1.0) {
     if constexpr (axis == 0) {
-      cv = Packed3{1, c, c, 1};
+      cv = Packed3{unit, c, c, unit};
       sv = Packed3{0, s, -s, 0};
     } else if constexpr (axis == 1) {
-      cv = Packed3{c, 1, c, 1};
+      cv = Packed3{c, unit, c, unit};
       sv = Packed3{-s, 0, s, 0};
     } else {
-      cv = Packed3{c, c, 1, 1};
+      cv = Packed3{c, c, unit, unit};
       sv = Packed3{s, -s, 0, 0};
     }
   }

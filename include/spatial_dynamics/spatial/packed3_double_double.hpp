@@ -94,6 +94,29 @@ SD_INLINE PackedDoubleDouble cross(const PackedDoubleDouble& a, const PackedDoub
 
 SD_INLINE PackedDoubleDouble splat(const DoubleDouble& x) { return {splat(x.hi), splat(x.lo)}; }
 
+/// E x for E given by its double-double columns: the product with the high parts as above, and
+/// the low parts' product with x's high parts in double (below the result's low parts' rounding).
+SD_INLINE PackedDoubleDouble mat_vec(const PackedDoubleDouble& c0, const PackedDoubleDouble& c1,
+                                     const PackedDoubleDouble& c2, const PackedDoubleDouble& x) {
+  const PackedDoubleDouble of_high = mat_vec(c0.hi, c1.hi, c2.hi, x);
+  return {of_high.hi, of_high.lo + mat_vec(c0.lo, c1.lo, c2.lo, x.hi)};
+}
+
+/// AxisRotation's rotation about coordinate axis k by an angle of double-double sine s and
+/// cosine c: E y = cv ∘ y + sv ∘ swap(y), each product double-double; Eᵀ is the one of −s.
+template <int axis>
+struct WideAxisRotation {
+  PackedDoubleDouble cv, sv;
+  WideAxisRotation(const DoubleDouble& s, const DoubleDouble& c) {
+    const AxisRotation<axis> high(s.hi, c.hi), low(s.lo, c.lo, 0.0);
+    cv = {high.cv, low.cv};
+    sv = {high.sv, low.sv};
+  }
+  SD_INLINE PackedDoubleDouble times(const PackedDoubleDouble& y) const {
+    return cv * y + sv * PackedDoubleDouble{AxisRotation<axis>::swap(y.hi), AxisRotation<axis>::swap(y.lo)};
+  }
+};
+
 /// Σ of lanes 0–2.
 SD_INLINE DoubleDouble lane_sum(const PackedDoubleDouble& x) {
   return (DoubleDouble(x.hi[0], x.lo[0]) + DoubleDouble(x.hi[1], x.lo[1])) + DoubleDouble(x.hi[2], x.lo[2]);
