@@ -71,10 +71,10 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
   const int v = j.idx_v;
   S* out = data.tau_less_gravity.data();
-  if (j.nv == 1) {  // the axis' dot product with n or f (no array of W to initialise)
-    W lanes[3];
-    Wide::lanes(one_dof_rotates(j) ? n : f, lanes);
-    out[v] = S(W(tau[v]) - dot_axis(j, lanes));
+  if (j.nv == 1) {  // the axis' dot product with n or f, in the wide vector's registers (one lane for a coordinate axis)
+    const typename Wide::Vector& moved = one_dof_rotates(j) ? n : f;
+    const W projected = j.axis_kind == AxisKind::General ? Wide::dot(j.axis, moved) : Wide::lane(moved, static_cast<int>(j.axis_kind));
+    out[v] = S(W(tau[v]) - projected);
   } else {
     W projected[6];  // Sᵀ f, in W
     W n_lanes[3], f_lanes[3];

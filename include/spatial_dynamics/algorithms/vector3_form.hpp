@@ -351,8 +351,14 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
       const PluckerTransform<S>& Xt = model.X_tree[i];
       E = packed3::columns(Xt.E);
       r = packed3::load3(Xt.r);
-      if (one_dof_rotates(j)) {
+      if (one_dof_rotates(j) && j.axis_kind != AxisKind::General) {
         detail::packed_rotate_about_joint_axis(j, data.joint_sin[i], data.joint_cos[i], E.c0, E.c1, E.c2);
+      } else if (one_dof_rotates(j)) {  // E = B0 + c B1 + s B2 (Data::up_rotation_terms)
+        const auto& terms = data.up_rotation_terms[i];
+        const Vector c = packed3::splat(data.joint_cos[i]), s = packed3::splat(data.joint_sin[i]);
+        E.c0 = load(terms.B0[0]) + c * load(terms.B1[0]) + s * load(terms.B2[0]);
+        E.c1 = load(terms.B0[1]) + c * load(terms.B1[1]) + s * load(terms.B2[1]);
+        E.c2 = load(terms.B0[2]) + c * load(terms.B1[2]) + s * load(terms.B2[2]);
       } else {
         const S position = j.coupled ? j.mimic.multiplier * q[j.idx_q] + j.mimic.offset : q[j.idx_q];
         r += times(packed3::transposed_columns(Xt.E), position * axis(j));

@@ -36,8 +36,8 @@ bool wide_residual_form_takes(const Model<S>& model) {
 /// The residual RNEA's per-body buffers (one layout in every build): v, a, f and ^iX_λ's r in
 /// double-double, Eᵀ by its columns (E's rows) for the inward pass, the joint angle's sine and
 /// cosine, and the coordinate axis of E (coordinate_axis_of_up_rotation; −1: none). Per body of
-/// a model the form takes, E's terms B0 = a aᵀ E_tree, B1 = E_tree − B0 and B2 = −a× E_tree by
-/// their columns in double-double (a prismatic joint's E_tree, 0 and 0).
+/// a model the form takes, E's terms B0..B2 (axis_operations.hpp's revolute_rotation_terms; a
+/// prismatic joint's E_tree, 0 and 0) by their columns in double-double.
 struct WideResidualWork {
   struct Body {
     WideVector3Storage<double> w, v, aw, al, n, f, r, Et0, Et1, Et2;
@@ -68,29 +68,21 @@ struct WideResidualWork {
     s.hi.lane[3] = s.lo.lane[3] = 0.0;
   }
   void set_up_body(const Model<double>& model, int i) {
-    using DD = DoubleDouble;
     const Joint<double>& j = model.joints[i];
     const Matrix3<double>& E_tree = model.X_tree[i].E;
     rnea[i].axis = coordinate_axis_of_up_rotation(model, i);
-    const Vector3<double>& a = j.axis;
-    for (int k = 0; k < 3; ++k) {  // column k of each, from E_tree's column t
-      const Vector3<double> t = E_tree.col(k);
-      const DD a_dot_t = (DD(a[0]) * t[0] + DD(a[1]) * t[1]) + DD(a[2]) * t[2];
-      DD b0[3], b1[3], b2[3];
-      for (int m = 0; m < 3; ++m) {
-        if (j.type != JointType::Revolute) {
-          b0[m] = t[m];
-          b1[m] = b2[m] = 0.0;
-          continue;
-        }
-        b0[m] = a_dot_t * a[m];                         // a aᵀ t
-        b1[m] = DD(t[m]) - b0[m];                       // t − a aᵀ t
-        const int m1 = (m + 1) % 3, m2 = (m + 2) % 3;
-        b2[m] = DD(a[m2]) * t[m1] - DD(a[m1]) * t[m2];  // −a × t
-      }
-      store(b0, rotation_terms[i].B0[k]);
-      store(b1, rotation_terms[i].B1[k]);
-      store(b2, rotation_terms[i].B2[k]);
+    detail::RevoluteRotationTerms terms{};
+    if (j.type == JointType::Revolute) {
+      terms = detail::revolute_rotation_terms(j.axis, E_tree);
+    } else {  // E = E_tree
+      for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < 3; ++m) terms.B[0][k][m] = E_tree(m, k);
+    }
+    RotationTerms& stored = rotation_terms[i];
+    for (int k = 0; k < 3; ++k) {
+      store(terms.B[0][k], stored.B0[k]);
+      store(terms.B[1][k], stored.B1[k]);
+      store(terms.B[2][k], stored.B2[k]);
     }
   }
 };
@@ -120,10 +112,6 @@ struct WideResidualForm {
   /// The joint's axis a (double), and k a for a double-double k.
   static SD_INLINE packed3::Packed3 axis(const Joint<S>& j) { return packed3::make(j.axis.x(), j.axis.y(), j.axis.z()); }
   static SD_INLINE Vector axis_times(const Joint<S>& j, const Scalar& k) { return packed3::scale(axis(j), packed3::splat(k)); }
-  /// a · y for double a.
-  static SD_INLINE DoubleDouble lane_sum_product(packed3::Packed3 a, const Vector& y) {
-    return packed3::lane_sum(packed3::scale(a, y));
-  }
 
   /// What the passes know of E beyond its columns (the body's axis, sine and cosine).
   template <class Work>
@@ -196,13 +184,8 @@ struct WideResidualForm {
   }
   /// a · x: one lane for a coordinate axis.
   static SD_INLINE Scalar dot_axis(const Joint<S>& j, const Vector& x) {
-    switch (j.axis_kind) {
-      case AxisKind::X: return {x.hi[0], x.lo[0]};
-      case AxisKind::Y: return {x.hi[1], x.lo[1]};
-      case AxisKind::Z: return {x.hi[2], x.lo[2]};
-      case AxisKind::General: break;
-    }
-    return lane_sum_product(axis(j), x);
+    using Wide = wide3::Form<S>;
+    return j.axis_kind == AxisKind::General ? Wide::dot(j.axis, x) : Wide::lane(x, static_cast<int>(j.axis_kind));
   }
 
   /// I (ω ; v) = (Ī_O ω + h × v ; m v − h × ω)   (eq. 25)

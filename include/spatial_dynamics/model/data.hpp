@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <type_traits>
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
@@ -92,6 +93,14 @@ struct Data {
   // (E_tree = 1, so that ^iX_λ's E is the joint's rx, ry or rz, RBDA Table 2.2), else −1: the ABA's
   // products with E then take the rotation's structure (plucker_transform.hpp's RotationAboutAxis).
   std::vector<int> up_rotation_axis;
+  // Per body of a revolute joint about a general axis, for double (the packed passes,
+  // vector3_form.hpp): ^iX_λ's E = B0 + c B1 + s B2 by the columns of B0..B2 (axis_operations.hpp's
+  // revolute_rotation_terms, rounded once from double-double), where rotating E_tree's columns
+  // about the axis would take about four times the instructions. Empty for other scalars.
+  struct RotationTerms {
+    Packed3Storage B0[3], B1[3], B2[3];
+  };
+  std::vector<RotationTerms> up_rotation_terms;
   // Whether crba carries the columns to the ancestors in base coordinates: when the bodies have
   // four or more moving ancestors on average, in runs of two or more, where that is cheaper than
   // one transform per pair.
@@ -137,6 +146,7 @@ struct Data {
         base_origin_and_axis(6 * (model.nbodies() + kWidestLanes<S>), S(0)),
         revolute_run_start(model.nbodies(), 0),
         up_rotation_axis(model.nbodies(), -1),
+        up_rotation_terms(std::is_same<S, double>::value ? model.nbodies() : 0),
         tau(VectorX<S>::Zero(model.nv)),
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
@@ -159,6 +169,8 @@ struct Data {
                            j.idx_v == model.joints[i - 1].idx_v + 1;
       revolute_run_start[i] = extends ? revolute_run_start[i - 1] : (revolute ? i : 0);
       up_rotation_axis[i] = coordinate_axis_of_up_rotation(model, i);
+      if constexpr (std::is_same<S, double>::value)
+        if (j.type == JointType::Revolute && j.axis_kind == AxisKind::General) store_rotation_terms(detail::revolute_rotation_terms(j.axis, model.X_tree[i].E), i);
     }
     // Base coordinates pay off from 4 moving ancestors per body on average, where those form runs
     // of two or more bodies on average (the runs are carried several at a time, crba_base_carry.hpp;
@@ -173,6 +185,16 @@ struct Data {
         j = model.parent[first];
       }
     crba_in_base_coordinates = ancestor_pairs >= 4L * (model.nbodies() - 1) && 2 * ancestor_runs <= ancestor_pairs;
+  }
+
+ private:
+  void store_rotation_terms(const detail::RevoluteRotationTerms& terms, int i) {
+    Packed3Storage* columns[3] = {up_rotation_terms[i].B0, up_rotation_terms[i].B1, up_rotation_terms[i].B2};
+    for (int t = 0; t < 3; ++t)
+      for (int k = 0; k < 3; ++k) {
+        for (int m = 0; m < 3; ++m) columns[t][k].lane[m] = static_cast<double>(terms.B[t][k][m]);
+        columns[t][k].lane[3] = 0.0;
+      }
   }
 };
 

@@ -152,16 +152,14 @@ struct AxisRotation {
   /// `unit` is cv's lane k (and pad): 1, or 0 for the low parts of a double-double rotation
   /// (packed3_double_double.hpp's WideAxisRotation).
   AxisRotation(double s, double c, double unit = 1.0) {
-    if constexpr (axis == 0) {
-      cv = Packed3{unit, c, c, unit};
-      sv = Packed3{0, s, -s, 0};
-    } else if constexpr (axis == 1) {
-      cv = Packed3{c, unit, c, unit};
-      sv = Packed3{-s, 0, s, 0};
-    } else {
-      cv = Packed3{c, c, unit, unit};
-      sv = Packed3{s, -s, 0, 0};
-    }
+    // c and s in every lane, then lane k and the pad set to unit and sv's signs applied: a
+    // broadcast and a blend or product each, where building the lanes one by one takes several
+    // inserts.
+    constexpr LaneIndex unit_lanes = {axis == 0 ? 4 : 0, axis == 1 ? 5 : 1, axis == 2 ? 6 : 2, 7};
+    cv = __builtin_shuffle(splat(c), splat(unit), unit_lanes);
+    if constexpr (axis == 0) sv = splat(s) * Packed3{0, 1, -1, 0};
+    else if constexpr (axis == 1) sv = splat(s) * Packed3{-1, 0, 1, 0};
+    else sv = splat(s) * Packed3{1, -1, 0, 0};
   }
   static SD_INLINE Packed3 swap(Packed3 y) {
     if constexpr (axis == 0) return __builtin_shuffle(y, LaneIndex{0, 2, 1, 3});

@@ -122,6 +122,9 @@ SD_INLINE DoubleDouble lane_sum(const PackedDoubleDouble& x) {
   return (DoubleDouble(x.hi[0], x.lo[0]) + DoubleDouble(x.hi[1], x.lo[1])) + DoubleDouble(x.hi[2], x.lo[2]);
 }
 
+/// a · x for double a.
+SD_INLINE DoubleDouble dot(Packed3 a, const PackedDoubleDouble& x) { return lane_sum(scale(a, x)); }
+
 }  // namespace packed3
 }  // namespace spatial_dynamics
 

@@ -119,9 +119,14 @@ struct Form {
       }
     }
   }
-  /// The three lanes as WiderScalar<S>.
+  /// The three lanes as WiderScalar<S>, or lane k.
   static SD_INLINE void lanes(const Vector& v, WiderScalar<S>* out) {
     for (int k = 0; k < 3; ++k) out[k] = v.x[k];
+  }
+  static SD_INLINE WiderScalar<S> lane(const Vector& v, int k) { return v.x[k]; }
+  /// a · v for a in S.
+  static SD_INLINE WiderScalar<S> dot(const Vector3<S>& a, const Vector& v) {
+    return (v.x[0] * a[0] + v.x[1] * a[1]) + v.x[2] * a[2];
   }
 };
 
@@ -167,6 +172,14 @@ struct Form<double> {
   static SD_INLINE void lanes(const Vector& v, DoubleDouble* out) {
     for (int k = 0; k < 3; ++k) out[k] = DoubleDouble(v.hi[k], v.lo[k]);
   }
+  static SD_INLINE DoubleDouble lane(const Vector& v, int k) {
+    switch (k) {  // lanes by constant indices
+      case 0: return {v.hi[0], v.lo[0]};
+      case 1: return {v.hi[1], v.lo[1]};
+      default: return {v.hi[2], v.lo[2]};
+    }
+  }
+  static SD_INLINE DoubleDouble dot(const Vector3<double>& a, const Vector& v) { return packed3::dot(packed3::load3(a), v); }
 };
 #endif
 

@@ -159,5 +159,29 @@ SD_INLINE void rotate_about_joint_axis(const Joint<S>& j, const Matrix3<S>& E_tr
   }
 }
 
+/// ^iX_λ's E = E_J(θ) E_tree of a revolute joint as B0 + cos θ B1 + sin θ B2 (Rodrigues' E_J =
+/// c 1 − s a× + (1 − c) a aᵀ, RBDA eq. 2.24, times E_tree): B0 = a aᵀ E_tree, B1 = E_tree − B0,
+/// B2 = −a× E_tree, constants of the model, so that forming E takes two products per column
+/// instead of the rotation of E_tree's columns. In double-double, for the residual RNEA
+/// (algorithms/wide_residual_form.hpp), and rounded once for the packed passes (Data).
+struct RevoluteRotationTerms {
+  DoubleDouble B[3][3][3];  // B[t][k][m]: term t (B0, B1, B2), column k, row m
+};
+inline RevoluteRotationTerms revolute_rotation_terms(const Vector3<double>& a, const Matrix3<double>& E_tree) {
+  using DD = DoubleDouble;
+  RevoluteRotationTerms terms;
+  for (int k = 0; k < 3; ++k) {  // column k of each, from E_tree's column t
+    const Vector3<double> t = E_tree.col(k);
+    const DD a_dot_t = (DD(a[0]) * t[0] + DD(a[1]) * t[1]) + DD(a[2]) * t[2];
+    for (int m = 0; m < 3; ++m) {
+      const int m1 = (m + 1) % 3, m2 = (m + 2) % 3;
+      terms.B[0][k][m] = a_dot_t * a[m];                         // a aᵀ t
+      terms.B[1][k][m] = DD(t[m]) - terms.B[0][k][m];            // t − a aᵀ t
+      terms.B[2][k][m] = DD(a[m2]) * t[m1] - DD(a[m1]) * t[m2];  // −a × t
+    }
+  }
+  return terms;
+}
+
 }  // namespace detail
 }  // namespace spatial_dynamics
