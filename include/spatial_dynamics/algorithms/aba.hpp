@@ -57,9 +57,7 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     // v_i = X v_λ + S q̇ (eq. 11), c_i = c_J + v_i × S q̇ (eq. 17)
     V w, v, cw, cv;
     const auto from_parent = [&]() SD_INLINE_LAMBDA {  // X v_λ
-      const MotionVector<S>& parent = data.v[model.parent[i]];
-      w = F::load(parent.angular);
-      v = F::load(parent.linear);
+      F::load_six(data.v[model.parent[i]], w, v);
       vec3::motion_to_child<F>(body_up_rotation(data, i), E, r, w, v);
     };
     if (j.nv == 1 && model.parent[i] == 0) {  // v_0 = 0: v_i = S q̇, c_i = S q̇ × S q̇ = 0
@@ -91,12 +89,23 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     V n, f;  // pᴬ_i = v ×* I v − f_ext (eq. 29)
     F::bias_force(model.inertia[i], w, v, n, f);
     if (f_ext) {
-      n -= F::load(f_ext[i].angular);
-      f -= F::load(f_ext[i].linear);
+      V n_ext, f_ext_i;
+      F::load_six(f_ext[i], n_ext, f_ext_i);
+      n -= n_ext;
+      f -= f_ext_i;
     }
     F::store_six(n, f, data.f[i]);
     if (!data.has_children[i]) data.IA[i].assign(model.inertia[i]);              // Iᴬ_i = I_i
   }
+}
+
+/// ^iX_λ's Eᵀ by its columns into Et where `about` (E's structure) tells nothing (otherwise Et is
+/// left as it is): what the inward steps at body i share.
+template <class S>
+SD_INLINE void transposed_up_rotation(const Data<S>& data, int i, const RotationAboutAxis<S>& about,
+                                      typename vec3::Form<S>::Rotation& Et) {
+  using F = vec3::Form<S>;
+  if (about.axis < 0) Et = F::transposed(F::rotation(data.X_up[i].E));
 }
 
 /// Pass 2's inertia part at a joint of n = nv > 1 coordinates (free, planar): U = Iᴬ S (6 × n),
@@ -129,9 +138,11 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
 /// Pass 2's inertia part at a 1-DoF joint: U = Iᴬ S, D⁻¹ = 1/(Sᵀ U), Iᴬ_λ += Xᵀ Iᵃ X with
 /// Iᵃ = Iᴬ − U D⁻¹ Uᵀ, and Iᵃ c_i returned for the force part (zero at a joint on the base).
 /// Iᴬ_i stays in data.IA[i]: the downdate is formed only on its way to the parent. The parent's
-/// first child stores Iᴬ_λ = I_λ + Xᵀ Iᵃ X, the others add to it.
-template <class S>
-SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i) {
+/// first child stores Iᴬ_λ = I_λ + Xᵀ Iᵃ X, the others add to it. `about` and Et as for
+/// articulated_force_step.
+template <class S, class TransposedRotation>
+SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i, const RotationAboutAxis<S>& about,
+                                              const TransposedRotation& Et) {
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
   const Matrix6<S>& IA = data.IA[i].matrix;
@@ -156,24 +167,27 @@ SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& da
   if (lambda == 0) return ForceVector<S>::Zero();
   const PluckerTransform<S>& X = data.X_up[i];
   V W_n = U_w, W_f = U_v;  // W = Xᵀ U, U taken to the parent as a force (eq. 12)
-  vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), W_n, W_f);
+  vec3::force_to_parent<F>(transposed(about), Et, F::translation(X), W_n, W_f);
   ForceVector<S>& W_D_inv = data.XtU_D_inv[i];  // for pass 3's q̈ = D⁻¹(u − Uᵀ c) − (W D⁻¹)ᵀ a_λ
   F::store_six(W_n * D_inv, W_f * D_inv, W_D_inv);
   return X.applyInverseAddLessRankOne(data.IA[i], U_w, U_v, D_inv, W_n, W_f, data.c[i], data.IA[lambda],
-                                      body_up_rotation(data, i), data.first_child[i] ? &model.inertia[lambda] : nullptr);
+                                      about, data.first_child[i] ? &model.inertia[lambda] : nullptr);
 }
 
 /// Pass 2's force part at body i, on the factorisation (U, D⁻¹, X_up) in data: u_i = τ_i − Sᵀ p_i,
 /// then p_λ += Xᵀ pᵃ with pᵃ = p_i + U D⁻¹ u_i (+ Iᵃ c_i, `inertia_times_bias`, in the ABA; none
-/// when solving M δ = r with the factorisation, aba_refined.hpp). p_i holds pᴬ_i on entry.
-template <class S>
+/// when solving M δ = r with the factorisation, aba_refined.hpp). p_i holds pᴬ_i on entry. `about`
+/// is ^iX_λ's structure (body_up_rotation), Et its Eᵀ (transposed_up_rotation).
+template <class S, class TransposedRotation>
 SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data, int i, const S* tau,
-                                      ForceVector<S>* p, Vector6<S>* u, const ForceVector<S>* inertia_times_bias) {
+                                      ForceVector<S>* p, Vector6<S>* u, const ForceVector<S>* inertia_times_bias,
+                                      const RotationAboutAxis<S>& about, const TransposedRotation& Et) {
   using F = vec3::Form<S>;
   using V = typename F::Vector;
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
-  V n = F::load(p[i].angular), f = F::load(p[i].linear);  // pᴬ, turned into pᵃ
+  V n, f;  // pᴬ, turned into pᵃ
+  F::load_six(p[i], n, f);
   if (j.nv == 1) {
     u[i][0] = tau[j.idx_v] - F::dot_axis(j, one_dof_rotates(j) ? n : f);              // u = τ − Sᵀ pᴬ
     if (lambda == 0) return;
@@ -194,14 +208,28 @@ SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data
     f += U_v;
   }
   if (inertia_times_bias) {                                                             //      + Iᵃ c
-    n += F::load(inertia_times_bias->angular);
-    f += F::load(inertia_times_bias->linear);
+    V Ia_c_n, Ia_c_f;
+    F::load_six(*inertia_times_bias, Ia_c_n, Ia_c_f);
+    n += Ia_c_n;
+    f += Ia_c_f;
   }
   // pᴬ_λ += Xᵀ pᵃ (eq. 12)
   const PluckerTransform<S>& X = data.X_up[i];
-  vec3::force_to_parent_by_E<F>(body_up_rotation(data, i), X.E, F::load(X.r), n, f);
+  vec3::force_to_parent<F>(transposed(about), Et, F::translation(X), n, f);
   ForceVector<S>& parent = p[lambda];
-  F::store_six(F::load(parent.angular) + n, F::load(parent.linear) + f, parent);
+  V parent_n, parent_f;
+  F::load_six(parent, parent_n, parent_f);
+  F::store_six(parent_n + n, parent_f + f, parent);
+}
+
+/// As above, E's structure and Eᵀ formed here (aba_refined's solve with the factorisation).
+template <class S>
+SD_INLINE void articulated_force_step(const Model<S>& model, const Data<S>& data, int i, const S* tau,
+                                      ForceVector<S>* p, Vector6<S>* u, const ForceVector<S>* inertia_times_bias) {
+  const auto about = body_up_rotation(data, i);
+  typename vec3::Form<S>::Rotation Et{};
+  transposed_up_rotation(data, i, about, Et);
+  articulated_force_step(model, data, i, tau, p, u, inertia_times_bias, about, Et);
 }
 
 /// Pass 2 (inward): articulated inertias and bias forces, from data.X_up, c, IA = I at the leaves and f = pᴬ;
@@ -211,16 +239,20 @@ template <class S>
 SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& tau_in,
                                 bool split_gravity) {
   const S* tau = split_gravity ? data.tau_less_gravity.data() : tau_in.data();
+  using F = vec3::Form<S>;
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    if (split_gravity) gravity_split_inward(model, data, i, tau_in);            // τ − τ_g at joint i
+    const auto about = body_up_rotation(data, i);
+    typename F::Rotation Et{};
+    transposed_up_rotation(data, i, about, Et);
+    if (split_gravity) gravity_split_inward(model, data, i, tau_in, transposed(about), Et);            // τ − τ_g at joint i
     ForceVector<S> Ia_c;  // Iᵃ c
     if (model.joints[i].nv == 1) {
-      Ia_c = one_dof_inertia_step(model, data, i);
+      Ia_c = one_dof_inertia_step(model, data, i, about, Et);
     } else {
       multi_dof_inertia_step(model, data, i);
       if (model.parent[i] > 0) Ia_c = data.IA[i] * data.c[i];                   // IA[i] holds Iᵃ here
     }
-    articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), model.parent[i] == 0 ? nullptr : &Ia_c);
+    articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), model.parent[i] == 0 ? nullptr : &Ia_c, about, Et);
   }
 }
 
@@ -243,14 +275,12 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
     const MotionVector<S>& parent = a[model.parent[i]];
     const bool from_rest = model.parent[i] == 0 && base_at_rest;  // a' = X a_0 + c = c
     V c_w = zero, c_l = zero;
-    if (c) {
-      c_w = F::load(c[i].angular);
-      c_l = F::load(c[i].linear);
-    }
+    if (c) F::load_six(c[i], c_w, c_l);
     V w = c_w, l = c_l;
     const auto add_parent = [&]() SD_INLINE_LAMBDA {
-      V Xa_w = F::load(parent.angular), Xa_l = F::load(parent.linear);
-      vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::load(X.r), Xa_w, Xa_l);  // a' = X a_λ
+      V Xa_w, Xa_l;
+      F::load_six(parent, Xa_w, Xa_l);
+      vec3::motion_to_child<F>(body_up_rotation(data, i), F::rotation(X.E), F::translation(X), Xa_w, Xa_l);  // a' = X a_λ
       w += Xa_w;                                                                                              //      + c
       l += Xa_l;
     };
@@ -267,9 +297,10 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
         if (c) u_less_Uc -= F::dot(U_w, c_w) + F::dot(U_v, c_l);
         qdd_i = data.D_inv[i](0, 0) * u_less_Uc;                                        // q̈ = D⁻¹(u − Uᵀ c)
         if (!from_rest) {
-          const ForceVector<S>& W_D_inv = data.XtU_D_inv[i];
-          qdd_i -= F::dot(F::load(W_D_inv.angular), F::load(parent.angular)) +
-                   F::dot(F::load(W_D_inv.linear), F::load(parent.linear));           //      − (Xᵀ U D⁻¹)ᵀ a_λ
+          V W_n, W_f, a_w, a_l;
+          F::load_six(data.XtU_D_inv[i], W_n, W_f);
+          F::load_six(parent, a_w, a_l);
+          qdd_i -= F::dot(W_n, a_w) + F::dot(W_f, a_l);                                 //      − (Xᵀ U D⁻¹)ᵀ a_λ
         }
       }
       qdd[j.idx_v] = qdd_i;

@@ -61,9 +61,11 @@ SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i
 }
 
 /// Body i on the way in, its subtree's force complete: τ − Sᵀ f for its joint into
-/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f).
-template <class S>
-SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau) {
+/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f), given Eᵀ
+/// by its columns (Et, a vec3::Form's) and its structure (about_Et).
+template <class S, class TransposedRotation>
+SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau,
+                                    const RotationAboutAxis<S>& about_Et, const TransposedRotation& Et) {
   using W = WiderScalar<S>;
   using Wide = wide3::Form<S>;
   const Joint<S>& j = model.joints[i];
@@ -85,8 +87,7 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   }
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  typename Wide::Vector Et_n, Et_f;
-  Wide::transposed_times(body_up_rotation(data, i), data.X_up[i].E, n, f, Et_n, Et_f);
+  const typename Wide::Vector Et_n = Wide::rotate(about_Et, Wide::rotation_of(Et), n), Et_f = Wide::rotate(about_Et, Wide::rotation_of(Et), f);
   auto& parent = data.gravity_split[lambda];
   Wide::store(Wide::load(parent.moment) + (Et_n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
   Wide::store(Wide::load(parent.force) + Et_f, parent.force);

@@ -6,6 +6,8 @@
 // on vec3::Form<S> is one algorithm in every build.
 #pragma once
 
+#include <cstddef>
+
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
@@ -50,6 +52,12 @@ struct OneStateJointTerms {
       bottom += bottom_k * j.axis[k];
     }
   }
+  /// A motion or force vector's halves, angular then linear (contiguous), as (top ; bottom).
+  template <class V, class SixVector>
+  static SD_INLINE void load_six(const SixVector& x, V& top, V& bottom) {
+    static_assert(sizeof(SixVector) == 6 * sizeof(S), "the halves of a 6-vector are contiguous");
+    F::load_halves(x.angular.data(), top, bottom);
+  }
   /// (top ; bottom) into a motion or force vector's halves, angular then linear (contiguous).
   template <class V, class SixVector>
   static SD_INLINE void store_six(const V& top, const V& bottom, SixVector& x) {
@@ -77,6 +85,7 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
   };
 
   static SD_INLINE Vector load(const Vector3<S>& v) { return v; }
+  static SD_INLINE Vector translation(const PluckerTransform<S>& X) { return X.r; }
   static SD_INLINE void store(const Vector& x, Vector3<S>& out) { out = x; }
   static SD_INLINE Vector load(const Packed3Storage& v) { return Vector(v.lane[0], v.lane[1], v.lane[2]); }
   static SD_INLINE void store(const Vector& x, Packed3Storage& out) {
@@ -116,8 +125,8 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
     x[m] = about.c * x_m + about.s * x_n;
     x[n] = about.c * x_n - about.s * x_m;
   }
-  /// x ← E x and y ← E y; x ← Eᵀ x and y ← Eᵀ y for E in memory: by the two coordinates E mixes
-  /// where `about` tells that it rotates about a coordinate axis, else by E's coefficients.
+  /// x ← E x and y ← E y: by the two coordinates E mixes where `about` tells that it rotates
+  /// about a coordinate axis, else by E's coefficients.
   static SD_INLINE void times_pair(const RotationAboutAxis<S>& about, const Rotation& E, Vector& x, Vector& y) {
     if (about.axis >= 0) {
       rotate_about_axis(about, x);
@@ -126,16 +135,6 @@ struct ScalarForm : OneStateJointTerms<ScalarForm<S>, S> {
     }
     x = E.E * x;
     y = E.E * y;
-  }
-  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>& about, const Matrix3<S>& E, Vector& x,
-                                              Vector& y) {
-    if (about.axis >= 0) {
-      rotate_about_axis(spatial_dynamics::transposed(about), x);
-      rotate_about_axis(spatial_dynamics::transposed(about), y);
-      return;
-    }
-    x = E.transpose() * x;
-    y = E.transpose() * y;
   }
   template <class Storage>
   static SD_INLINE void store_columns(const Matrix3<S>& M, Storage& c0, Storage& c1, Storage& c2) {
@@ -211,6 +210,11 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
   using Rotation = packed3::Columns;  // E by its columns
 
   static SD_INLINE Vector load(const Vector3<S>& v) { return packed3::load3(v); }
+  /// X's r, the last member of its struct: read from the coefficient before it (E's last).
+  static SD_INLINE Vector translation(const PluckerTransform<S>& X) {
+    static_assert(offsetof(PluckerTransform<S>, r) == 9 * sizeof(S), "r follows E");
+    return packed3::load_after(X.E.data() + 8);
+  }
   static SD_INLINE void store(const Vector& x, Vector3<S>& out) { packed3::store3(x, out.data()); }
   static SD_INLINE Vector load(const Packed3Storage& v) { return packed3::load(v); }
   static SD_INLINE void store(const Vector& x, Packed3Storage& out) { packed3::store(x, out); }
@@ -247,17 +251,6 @@ struct PackedForm : OneStateJointTerms<PackedForm, double> {
     }
     x = times(E, x);
     y = times(E, y);
-  }
-  /// x ← Eᵀ x and y ← Eᵀ y for E in memory, as above (E's columns transposed in registers).
-  static SD_INLINE void transposed_times_pair(const RotationAboutAxis<S>& about, const Matrix3<S>& E, Vector& x,
-                                              Vector& y) {
-    if (about.axis >= 0) {
-      rotate_pair_about_axis(spatial_dynamics::transposed(about), x, y);
-      return;
-    }
-    const Rotation Et = transposed(rotation(E));
-    x = times(Et, x);
-    y = times(Et, y);
   }
   /// x ← E x and y ← E y for the rotation about a coordinate axis `about` describes.
   static SD_INLINE void rotate_pair_about_axis(const RotationAboutAxis<S>& about, Vector& x, Vector& y) {
@@ -418,14 +411,6 @@ template <class F, class About, class TransposedRotation>
 SD_INLINE void force_to_parent(const About& about_Et, const TransposedRotation& Et, const typename F::Vector& r,
                                typename F::Vector& n, typename F::Vector& f) {
   F::times_pair(about_Et, Et, f, n);
-  n += F::cross(r, f);
-}
-
-/// As above for ^iX_λ = (E, r) given E in memory (Eᵀ formed only where its coefficients are used).
-template <class F>
-SD_INLINE void force_to_parent_by_E(const RotationAboutAxis<typename F::Scalar>& about, const Matrix3<typename F::Scalar>& E,
-                               const typename F::Vector& r, typename F::Vector& n, typename F::Vector& f) {
-  F::transposed_times_pair(about, E, n, f);
   n += F::cross(r, f);
 }
 

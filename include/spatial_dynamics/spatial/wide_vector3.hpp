@@ -86,19 +86,19 @@ template <class S>
 struct Form {
   using Vector = ScalarWideVector3<S>;
   using Rotation = ScalarWideRotation<S>;
-  static SD_INLINE Rotation rotation(const Matrix3<S>& E) { return {E}; }
-  static SD_INLINE Rotation transposed(const Matrix3<S>& E) { return {E.transpose()}; }
   /// The rotation a pass on vec3::Form<S> holds (its member E), in this form.
   template <class FormRotation>
   static SD_INLINE Rotation rotation_of(const FormRotation& R) { return {R.E}; }
-  /// R y, R being the rotation `about` describes (whose structure this form does not use).
-  static SD_INLINE Vector rotate(const RotationAboutAxis<S>&, const Rotation& R, const Vector& y) { return R * y; }
-  /// Eᵀ n and Eᵀ f.
-  static SD_INLINE void transposed_times(const RotationAboutAxis<S>&, const Matrix3<S>& E, const Vector& n,
-                                         const Vector& f, Vector& Et_n, Vector& Et_f) {
-    const Rotation Et = transposed(E);
-    Et_n = Et * n;
-    Et_f = Et * f;
+  /// R y; where `about` tells that R rotates about a coordinate axis (R's coefficients then need
+  /// not be given), by the two coordinates it mixes, m = k + 1 and n = k + 2 (mod 3): (c y_m + s y_n,
+  /// c y_n − s y_m) (RBDA Table 2.2).
+  static SD_INLINE Vector rotate(const RotationAboutAxis<S>& about, const Rotation& R, const Vector& y) {
+    if (about.axis < 0) return R * y;
+    const int m = (about.axis + 1) % 3, n = (about.axis + 2) % 3;
+    Vector out = y;
+    out.x[m] = y.x[m] * about.c + y.x[n] * about.s;
+    out.x[n] = y.x[n] * about.c - y.x[m] * about.s;
+    return out;
   }
   static SD_INLINE Vector from(const Vector3<S>& v) { return {{WiderScalar<S>(v[0]), WiderScalar<S>(v[1]), WiderScalar<S>(v[2])}}; }
   static SD_INLINE Vector load(const WideVector3Storage<S>& s) {
@@ -135,11 +135,10 @@ template <>
 struct Form<double> {
   using Vector = packed3::PackedDoubleDouble;
   using Rotation = packed3::Columns;
-  static SD_INLINE Rotation rotation(const Matrix3<double>& E) { return packed3::columns(E); }
-  static SD_INLINE Rotation transposed(const Matrix3<double>& E) { return packed3::transposed_columns(E); }
   /// The rotation a pass on vec3::Form<double> holds: the same columns.
   static SD_INLINE const Rotation& rotation_of(const Rotation& R) { return R; }
-  /// R y; by the lanes it mixes where `about` tells that R rotates about a coordinate axis.
+  /// R y; by the lanes it mixes where `about` tells that R rotates about a coordinate axis (R's
+  /// coefficients then need not be given).
   static SD_INLINE Vector rotate(const RotationAboutAxis<double>& about, const Rotation& R, const Vector& y) {
     if (about.axis < 0) return R * y;
     Vector out;
@@ -147,21 +146,6 @@ struct Form<double> {
       out = packed3::times(packed3::AxisRotation<decltype(k)::value>(about.s, about.c), y, false);
     });
     return out;
-  }
-  /// Eᵀ n and Eᵀ f; by the lanes E mixes where `about` tells that it rotates about a coordinate axis.
-  static SD_INLINE void transposed_times(const RotationAboutAxis<double>& about, const Matrix3<double>& E,
-                                         const Vector& n, const Vector& f, Vector& Et_n, Vector& Et_f) {
-    if (about.axis < 0) {
-      const Rotation Et = transposed(E);
-      Et_n = Et * n;
-      Et_f = Et * f;
-      return;
-    }
-    packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
-      const packed3::AxisRotation<decltype(k)::value> rotation(about.s, about.c);
-      Et_n = packed3::times(rotation, n, true);
-      Et_f = packed3::times(rotation, f, true);
-    });
   }
   static SD_INLINE Vector from(const Vector3<double>& v) { return {packed3::load3(v), packed3::Packed3{}}; }
   static SD_INLINE Vector load(const WideVector3Storage<double>& s) { return {packed3::load(s.hi), packed3::load(s.lo)}; }
