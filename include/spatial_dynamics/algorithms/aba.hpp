@@ -90,7 +90,7 @@ SD_INLINE void aba_velocity_pass(const Model<S>& model, Data<S>& data, const Con
     F::bias_force(model.inertia[i], w, v, n, f);
     if (f_ext) {
       V n_ext, f_ext_i;
-      F::load_six(f_ext[i], n_ext, f_ext_i);
+      F::load_six_settled(f_ext[i], n_ext, f_ext_i);
       n -= n_ext;
       f -= f_ext_i;
     }
@@ -275,7 +275,7 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
     const MotionVector<S>& parent = a[model.parent[i]];
     const bool from_rest = model.parent[i] == 0 && base_at_rest;  // a' = X a_0 + c = c
     V c_w = zero, c_l = zero;
-    if (c) F::load_six(c[i], c_w, c_l);
+    if (c) F::load_six_settled(c[i], c_w, c_l);  // stored in pass 1
     V w = c_w, l = c_l;
     const auto add_parent = [&]() SD_INLINE_LAMBDA {
       V Xa_w, Xa_l;
@@ -298,7 +298,7 @@ SD_INLINE void articulated_acceleration_pass(const Model<S>& model, const Data<S
         qdd_i = data.D_inv[i](0, 0) * u_less_Uc;                                        // q̈ = D⁻¹(u − Uᵀ c)
         if (!from_rest) {
           V W_n, W_f, a_w, a_l;
-          F::load_six(data.XtU_D_inv[i], W_n, W_f);
+          F::load_six_settled(data.XtU_D_inv[i], W_n, W_f);  // stored in pass 2
           F::load_six(parent, a_w, a_l);
           qdd_i -= F::dot(W_n, a_w) + F::dot(W_f, a_l);                                 //      − (Xᵀ U D⁻¹)ᵀ a_λ
         }

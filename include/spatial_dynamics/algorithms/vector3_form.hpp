@@ -52,9 +52,19 @@ struct OneStateJointTerms {
       bottom += bottom_k * j.axis[k];
     }
   }
-  /// A motion or force vector's halves, angular then linear (contiguous), as (top ; bottom).
+  /// A motion or force vector's halves, angular then linear, as (top ; bottom): each by a load
+  /// that lies within one of store_six's stores, so that a vector just stored is read from the
+  /// store buffer.
   template <class V, class SixVector>
   static SD_INLINE void load_six(const SixVector& x, V& top, V& bottom) {
+    top = F::load(x.angular);
+    bottom = F::load(x.linear);
+  }
+  /// As load_six, by F::load_halves (for packed 3-vectors two 4-lane loads rather than two loads
+  /// and an insert each), for a vector stored long before (not by a store still in flight: a load
+  /// that spans store_six's two stores waits for both to reach the cache).
+  template <class V, class SixVector>
+  static SD_INLINE void load_six_settled(const SixVector& x, V& top, V& bottom) {
     static_assert(sizeof(SixVector) == 6 * sizeof(S), "the halves of a 6-vector are contiguous");
     F::load_halves(x.angular.data(), top, bottom);
   }
