@@ -511,6 +511,74 @@ TEST(PackedPaths, AxisRotationsAgainstMatrices) {
               worst_vector, worst_wide, worst_step);
 }
 
+// ^iX_λ's E = B0 + c B1 + s B2 from a revolute joint's terms (axis_operations.hpp's
+// revolute_rotation_terms) against Rodrigues' formula times E_tree in float128, for general unit
+// axes, rotated tree transforms and angles over several turns: in double-double (the residual
+// RNEA's E, far below double's rounding, which a wrong term would exceed), rounded once to double
+// (Data::up_rotation_terms), and the packed passes' E that the ABA leaves in data.X_up.
+TEST(PackedPaths, RotationTermsAgainstRodriguesInFloat128) {
+  SKIP_WITHOUT_AVX2_FMA();
+  using sd::Quad;
+  using DD = sd::DoubleDouble;
+  std::mt19937 rng(61);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst_wide = 0, worst_rounded = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d a = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const Eigen::Matrix3d E_tree = sd::coordinate_rotation(Eigen::Vector3d(Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()), 3 * u(rng));
+    const double angle = 10 * u(rng);
+    const Quad s_quad = boost::multiprecision::sin(Quad(angle)), c_quad = boost::multiprecision::cos(Quad(angle));
+    // Rodrigues' c 1 − s a× + (1 − c) a aᵀ (RBDA eq. 2.24) times E_tree, in float128.
+    const Eigen::Matrix<Quad, 3, 1> a_quad = a.cast<Quad>();
+    Eigen::Matrix<Quad, 3, 3> a_cross;
+    a_cross << Quad(0), -a_quad.z(), a_quad.y(), a_quad.z(), Quad(0), -a_quad.x(), -a_quad.y(), a_quad.x(), Quad(0);
+    const Eigen::Matrix<Quad, 3, 3> expected =
+        (c_quad * Eigen::Matrix<Quad, 3, 3>::Identity() - s_quad * a_cross + (Quad(1) - c_quad) * a_quad * a_quad.transpose()) *
+        E_tree.cast<Quad>();
+    const sd::detail::RevoluteRotationTerms terms = sd::detail::revolute_rotation_terms(a, E_tree);
+    const auto to_dd = [](const Quad& x) {  // the nearest double-double
+      const double hi = static_cast<double>(x);
+      return DD(hi, static_cast<double>(x - Quad(hi)));
+    };
+    const DD s = to_dd(s_quad), c = to_dd(c_quad);
+    for (int k = 0; k < 3; ++k)
+      for (int m = 0; m < 3; ++m) {
+        const DD wide = terms.B[0][k][m] + c * terms.B[1][k][m] + s * terms.B[2][k][m];
+        const double rounded = static_cast<double>(terms.B[0][k][m]) + static_cast<double>(c_quad) * static_cast<double>(terms.B[1][k][m]) +
+                               static_cast<double>(s_quad) * static_cast<double>(terms.B[2][k][m]);
+        worst_wide = std::max(worst_wide, std::fabs(static_cast<double>((Quad(wide.hi) + Quad(wide.lo)) - expected(m, k))));
+        worst_rounded = std::max(worst_rounded, std::fabs(static_cast<double>(Quad(rounded) - expected(m, k))));
+      }
+  }
+  EXPECT_LE(worst_wide, 1e-30);
+  EXPECT_LE(worst_rounded, 8e-16);
+  // The packed passes' E on a random chain (general axes, rotated tree transforms).
+  std::mt19937 chain_rng(62);
+  const sd::Model<double> model =
+      sd::build_model_from_urdf_string(sd::synthetic::to_urdf("chain", sd::synthetic::random_chain(12, chain_rng)));
+  sd::Data<double> data(model);
+  double worst_packed = 0;
+  for (int state = 0; state < 20; ++state) {
+    const VectorXd q = sd_test::random_configuration(model, rng), zero = VectorXd::Zero(model.nv);
+    sd::aba(model, data, q, zero, zero);
+    for (int i = 1; i < model.nbodies(); ++i) {
+      const sd::Joint<double>& j = model.joints[i];
+      const Quad angle = Quad(q[j.idx_q]);
+      const Eigen::Matrix<Quad, 3, 1> axis = j.axis.cast<Quad>();
+      Eigen::Matrix<Quad, 3, 3> axis_cross;
+      axis_cross << Quad(0), -axis.z(), axis.y(), axis.z(), Quad(0), -axis.x(), -axis.y(), axis.x(), Quad(0);
+      const Quad s = boost::multiprecision::sin(angle), c = boost::multiprecision::cos(angle);
+      const Eigen::Matrix<Quad, 3, 3> expected =
+          (c * Eigen::Matrix<Quad, 3, 3>::Identity() - s * axis_cross + (Quad(1) - c) * axis * axis.transpose()) *
+          model.X_tree[i].E.cast<Quad>();
+      worst_packed = std::max(worst_packed, static_cast<double>((data.X_up[i].E.cast<Quad>() - expected).cwiseAbs().maxCoeff()));
+    }
+  }
+  EXPECT_LE(worst_packed, 1e-15);
+  std::printf("E from the rotation terms against Rodrigues' formula in float128: double-double %.1e, rounded terms %.1e, "
+              "packed passes %.1e\n", worst_wide, worst_rounded, worst_packed);
+}
+
 // The ABA with the rotations' structure (Data::up_rotation_axis) on a tree whose revolute joints
 // about x, y and z have tree transforms without rotation (and one with), fixed and floating:
 // against the same call with the structure cleared (every E by its coefficients) and against the
