@@ -141,8 +141,8 @@ __attribute__((noinline)) void multi_dof_inertia_step(const Model<S>& model, Dat
 /// first child stores Iᴬ_λ = I_λ + Xᵀ Iᵃ X, the others add to it. `about` and Et as for
 /// articulated_force_step.
 template <class S, class TransposedRotation>
-SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i, const RotationAboutAxis<S>& about,
-                                              const TransposedRotation& Et) {
+SD_INLINE ForceVector<S> one_dof_inertia_step(const Model<S>& model, Data<S>& data, int i,
+                                              const RotationAboutAxis<S>& about, const TransposedRotation& Et) {
   const Joint<S>& j = model.joints[i];
   const int lambda = model.parent[i];
   const Matrix6<S>& IA = data.IA[i].matrix;
@@ -244,7 +244,7 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
     const auto about = body_up_rotation(data, i);
     typename F::Rotation Et{};
     transposed_up_rotation(data, i, about, Et);
-    if (split_gravity) gravity_split_inward(model, data, i, tau_in, transposed(about), Et);            // τ − τ_g at joint i
+    if (split_gravity) gravity_split_inward(model, data, i, tau_in, transposed(about), Et);  // τ − τ_g at joint i
     ForceVector<S> Ia_c;  // Iᵃ c
     if (model.joints[i].nv == 1) {
       Ia_c = one_dof_inertia_step(model, data, i, about, Et);
@@ -252,7 +252,8 @@ SD_INLINE void aba_inertia_pass(const Model<S>& model, Data<S>& data, const Cons
       multi_dof_inertia_step(model, data, i);
       if (model.parent[i] > 0) Ia_c = data.IA[i] * data.c[i];                   // IA[i] holds Iᵃ here
     }
-    articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), model.parent[i] == 0 ? nullptr : &Ia_c, about, Et);
+    articulated_force_step(model, data, i, tau, data.f.data(), data.u.data(), model.parent[i] == 0 ? nullptr : &Ia_c,
+                           about, Et);
   }
 }
 

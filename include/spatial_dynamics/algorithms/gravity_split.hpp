@@ -73,9 +73,10 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
   const int v = j.idx_v;
   S* out = data.tau_less_gravity.data();
-  if (j.nv == 1) {  // the axis' dot product with n or f, in the wide vector's registers (one lane for a coordinate axis)
+  if (j.nv == 1) {  // the axis' dot product with n or f on the wide vector (a lane for a coordinate axis)
     const typename Wide::Vector& moved = one_dof_rotates(j) ? n : f;
-    const W projected = j.axis_kind == AxisKind::General ? Wide::dot(j.axis, moved) : Wide::lane(moved, static_cast<int>(j.axis_kind));
+    const W projected = j.axis_kind == AxisKind::General ? Wide::dot(j.axis, moved)
+                                                         : Wide::lane(moved, static_cast<int>(j.axis_kind));
     out[v] = S(W(tau[v]) - projected);
   } else {
     W projected[6];  // Sᵀ f, in W
@@ -87,7 +88,8 @@ SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i,
   }
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const typename Wide::Vector Et_n = Wide::rotate(about_Et, Wide::rotation_of(Et), n), Et_f = Wide::rotate(about_Et, Wide::rotation_of(Et), f);
+  const typename Wide::Vector Et_n = Wide::rotate(about_Et, Wide::rotation_of(Et), n),
+                              Et_f = Wide::rotate(about_Et, Wide::rotation_of(Et), f);
   auto& parent = data.gravity_split[lambda];
   Wide::store(Wide::load(parent.moment) + (Et_n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
   Wide::store(Wide::load(parent.force) + Et_f, parent.force);

@@ -145,7 +145,9 @@ struct WideResidualForm {
     if (b.axis < 0) {
       const auto& terms = work.rotation_terms[i];
       const Vector c = packed3::splat(b.cos), s = packed3::splat(b.sin);
-      const auto column = [&](int k) SD_INLINE_LAMBDA { return load(terms.B0[k]) + c * load(terms.B1[k]) + s * load(terms.B2[k]); };
+      const auto column = [&](int k) SD_INLINE_LAMBDA {
+        return load(terms.B0[k]) + c * load(terms.B1[k]) + s * load(terms.B2[k]);
+      };
       E = {column(0), column(1), column(2)};
       Rotation Et;
       packed3::transpose(E.c0.hi, E.c1.hi, E.c2.hi, Et.c0.hi, Et.c1.hi, Et.c2.hi);
@@ -153,6 +155,8 @@ struct WideResidualForm {
       store(Et.c0, b.Et0);
       store(Et.c1, b.Et1);
       store(Et.c2, b.Et2);
+    } else {
+      E = Rotation{};  // not read: the products take the rotation's lanes
     }
     r = load(Xt.r);
     if (j.type == JointType::Prismatic) r += packed3::transposed_columns(Xt.E) * axis_times(j, q[j.idx_q]);

@@ -170,7 +170,8 @@ struct Data {
       revolute_run_start[i] = extends ? revolute_run_start[i - 1] : (revolute ? i : 0);
       up_rotation_axis[i] = coordinate_axis_of_up_rotation(model, i);
       if constexpr (std::is_same<S, double>::value)
-        if (j.type == JointType::Revolute && j.axis_kind == AxisKind::General) store_rotation_terms(detail::revolute_rotation_terms(j.axis, model.X_tree[i].E), i);
+        if (j.type == JointType::Revolute && j.axis_kind == AxisKind::General)
+          store_rotation_terms(detail::revolute_rotation_terms(j.axis, model.X_tree[i].E), i);
     }
     // Base coordinates pay off from 4 moving ancestors per body on average, where those form runs
     // of two or more bodies on average (the runs are carried several at a time, crba_base_carry.hpp;

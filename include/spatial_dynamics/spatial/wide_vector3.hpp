@@ -163,7 +163,9 @@ struct Form<double> {
       default: return {v.hi[2], v.lo[2]};
     }
   }
-  static SD_INLINE DoubleDouble dot(const Vector3<double>& a, const Vector& v) { return packed3::dot(packed3::load3(a), v); }
+  static SD_INLINE DoubleDouble dot(const Vector3<double>& a, const Vector& v) {
+    return packed3::dot(packed3::load3(a), v);
+  }
 };
 #endif
 
