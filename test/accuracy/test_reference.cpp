@@ -93,6 +93,7 @@ sd::Model<Quad> with_exact_rotations(const sd::Model<double>& model_d) {
     model.X_tree[i].E = Eigen::Quaternion<Quad>(model.X_tree[i].E).normalized().toRotationMatrix();
     model.joints[i].axis.normalize();
   }
+  model.finalize();  // the joint types take the axes again
   return model;
 }
 

@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "spatial_dynamics/model/data.hpp"
-#include "spatial_dynamics/model/joints/joint_dispatch.hpp"
+#include "spatial_dynamics/model/joints/joint_axis_shortcuts.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/lane_trigonometry.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
@@ -24,15 +24,15 @@ namespace spatial_dynamics {
 template <class S>
 SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, const S& s, const S& c,
                                   PluckerTransform<S>& X) {
-  const Joint<S>& j = model.joints[i];
-  visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { joint.up_transform(j, model.X_tree[i], model.joint_names[i], q, s, c, X); });
+  visit_joint(model.joints[i], [&](const auto& joint) SD_INLINE_LAMBDA {
+    X = joint.transform(model.X_tree[i], q, s, c, JointLabel{model.joint_names[i], model.joints[i].idx_q});
+  });
 }
 
 /// As above, computing the angle's sine and cosine from q.
 template <class S>
 SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, PluckerTransform<S>& X) {
-  const Joint<S>& j = model.joints[i];
-  const int angle = angle_coordinate(j);
+  const int angle = angle_coordinate(model.joints[i]);
   S s(0), c(1);
   if (angle >= 0) detail::joint_sin_cos(q[angle], s, c);
   joint_up_transform(model, i, q, s, c, X);
@@ -42,13 +42,7 @@ SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, Pluc
 /// (prismatic: S = (0 ; a)). The 1-DoF shortcuts below are taken only where j.nv == 1.
 template <class S>
 SD_INLINE bool one_dof_rotates(const Joint<S>& j) {
-  switch (j.type) {  // constants only: compiled to a bit test, not a jump
-    case JointType::Revolute: return true;
-    case JointType::Prismatic: return false;
-    case JointType::Free:
-    case JointType::Planar: return false;  // several coordinates: never asked
-  }
-  return false;
+  return j.type == JointType::Revolute;
 }
 
 /// S q̇ for a 1-DoF joint with velocity (or acceleration) v.
@@ -58,42 +52,55 @@ SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
   return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
 }
 
-// ---- any joint, through its model (model/joints/); s and c are its angle's sine and cosine ----
+// ---- any joint, through its type (model/joints/); s and c are its angle's sine and cosine ----
 
 /// S q̇; `qd` points at the joint's first velocity coordinate.
 template <class S>
 SD_INLINE MotionVector<S> joint_motion(const Joint<S>& j, const S& s, const S& c, const S* qd) {
-  return visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { return joint.motion(j, s, c, qd); });
+  return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA { return joint.motion(qd, s, c); });
 }
 
 /// c_J = S̊ q̇, the joint's own velocity-product acceleration (zero where S is constant).
 template <class S>
 SD_INLINE MotionVector<S> joint_bias(const Joint<S>& j, const S& s, const S& c, const S* qd) {
-  return visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { return joint.bias(j, s, c, qd); });
+  return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
+    return joint.velocity_product(MotionVector<S>::Zero(), qd, s, c);  // c_J + 0 × S q̇
+  });
 }
 
 /// U = I S (6 × nv, in U's first nv columns) for a 6 × 6 inertia I.
 template <class S>
 SD_INLINE void inertia_times_subspace(const Joint<S>& j, const S& s, const S& c, const Matrix6<S>& I, Matrix6<S>& U) {
-  visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { joint.inertia_times_subspace(j, s, c, I, U); });
+  visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
+    U.template leftCols<std::decay_t<decltype(joint)>::nv>() = joint.inertia_times(I, s, c);
+  });
 }
 
 /// Column k of the motion subspace S.
 template <class S>
 inline MotionVector<S> joint_subspace_column(const Joint<S>& j, const S& s, const S& c, int k) {
-  return visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { return joint.subspace_column(j, s, c, k); });
+  return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA { return joint.column(k, s, c); });
 }
 
-/// Sᵀ (n ; f) written to out[0 .. nv); n, f and out are 3-arrays of any scalar (a wider one too).
+/// Sᵀ (n ; f) written to out[0 .. nv), column by column; n, f and out are 3-arrays of any scalar
+/// (a wider one too).
 template <class S, class T>
 SD_INLINE void joint_project(const Joint<S>& j, const S& s, const S& c, const T* n, const T* f, T* out) {
-  visit_joint(j, [&](auto joint) SD_INLINE_LAMBDA { joint.project(j, s, c, n, f, out); });
+  for (int k = 0; k < j.nv; ++k) {
+    const MotionVector<S> column = joint_subspace_column(j, s, c, k);
+    T sum = T(0);
+    for (int m = 0; m < 3; ++m) sum = sum + n[m] * column.angular[m] + f[m] * column.linear[m];
+    out[k] = sum;
+  }
 }
 
 /// Sᵀ f written to out[0 .. nv).
 template <class S>
 SD_INLINE void joint_project(const Joint<S>& j, const S& s, const S& c, const ForceVector<S>& f, S* out) {
-  joint_project(j, s, c, f.angular.data(), f.linear.data(), out);
+  visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
+    const auto projected = joint.project(f, s, c);
+    for (int k = 0; k < projected.size(); ++k) out[k] = projected[k];
+  });
 }
 
 // ---- whole-vector access: handles coupled mimic joints ---------------------------------------

@@ -18,15 +18,21 @@ void update_joint_transforms(const Model<S>& model, Data<S>& data, const ConstVe
   for (int i = 1; i < model.nbodies(); ++i) body_up_transform(model, data, i, q.data(), data.X_up[i]);
 }
 
+/// ^iX_0 = ^iX_λ ^λX_0 for every body, from data.X_up.
+template <class S>
+void update_body_poses(const Model<S>& model, Data<S>& data) {
+  data.X_base[0] = PluckerTransform<S>::Identity();
+  for (int i = 1; i < model.nbodies(); ++i) data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
+}
+
 /// Body poses ^iX_0 = ^iX_λ ^λX_0 and frame poses ^FX_0 = ^FX_B ^BX_0. The pose of body i in
 /// the base is (data.X_base[i].rotation(), data.X_base[i].translation()). A non-finite pose (a
 /// non-finite q, or an overflow) throws std::domain_error naming the body or frame.
 template <class S>
 void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   update_joint_transforms(model, data, q);
-  data.X_base[0] = PluckerTransform<S>::Identity();
+  update_body_poses(model, data);
   for (int i = 1; i < model.nbodies(); ++i) {
-    data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];
     if (!data.X_base[i].allFinite())
       throw std::domain_error("forward kinematics: the pose of body '" + model.body_names[i] + "'" +
                               detail::non_finite_reason());

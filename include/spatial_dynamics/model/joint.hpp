@@ -1,21 +1,17 @@
-// One joint per body: its type, axis (in the joint frame, which is the child body's frame),
+// One joint per body: its kind, axis (in the joint frame, which is the child body's frame),
 // where its coordinates sit in q and in q̇, and its limits.
 #pragma once
 
 #include <limits>
 #include <string>
+#include <utility>
+#include <variant>
 
+#include "spatial_dynamics/model/joints/joint_dispatch.hpp"
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 
 namespace spatial_dynamics {
 
-enum class JointType {
-  Revolute,   // 1 DoF, rotation about `axis` (URDF revolute and continuous)
-  Prismatic,  // 1 DoF, translation along `axis`
-  Free,       // 6 DoF: the floating root or a URDF floating joint, q = (x y z qx qy qz qw), q̇ = (ω; v) in the body frame
-  Planar,     // 3 DoF, q = (x, y, yaw): translation along plane_x and plane_y, rotation about `axis` (the normal)
-};
-// Each type's arithmetic is its own file, model/joints/<type>.hpp, reached through visit_joint.
 
 /// Axis-aligned joints take cheaper code paths than a general unit axis.
 enum class AxisKind { X, Y, Z, General };
@@ -65,6 +61,11 @@ struct Joint {
   /// Coupled mimic joint: it has no coordinates of its own; idx_q/idx_v point at its master's and
   /// q = multiplier · q_master + offset, q̇ = multiplier · q̇_master (see couple_mimic_joints).
   bool coupled = false;
+  /// The joint type (model/joints/) of `type` and the axes above: set by update_model(), which
+  /// Model::finalize() calls for every joint.
+  JointModel<S> model;
+
+  void update_model() { model = make_joint_model(type, axis, plane_x, plane_y); }
 
   template <class T>
   Joint<T> cast() const {
@@ -81,9 +82,22 @@ struct Joint {
     j.limits = limits.template cast<T>();
     j.mimic = mimic.template cast<T>();
     j.coupled = coupled;
+    j.update_model();
     return j;
   }
 };
+
+/// visit(joint) with the joint type of j (model/joints/joint_dispatch.hpp).
+template <class S, class Visitor>
+SD_INLINE decltype(auto) visit_joint(const Joint<S>& j, Visitor&& visit) {
+  return visit_joint_model<S>(j.model, std::forward<Visitor>(visit));
+}
+
+/// Where the joint's angle sits among its coordinates (revolute 0, planar 2), −1 for none.
+template <class S>
+SD_INLINE int angle_coordinate(const Joint<S>& j) {
+  return visit_joint(j, [](const auto& joint) SD_INLINE_LAMBDA { return joint.angle_coordinate; });
+}
 
 /// Classifies a unit axis: exactly +x, +y or +z take the cheap paths.
 template <class S>

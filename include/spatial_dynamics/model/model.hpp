@@ -13,7 +13,6 @@
 
 #include "spatial_dynamics/model/frame.hpp"
 #include "spatial_dynamics/model/joint.hpp"
-#include "spatial_dynamics/model/joints/joint_dispatch.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
@@ -77,7 +76,7 @@ struct Model {
     std::vector<std::string> names;
     for (int i = 1; i < nbodies(); ++i) {
       if (joints[i].coupled) continue;  // no coordinate of its own
-      for (std::string& name : visit_joint(joints[i], [&](auto joint) { return joint.velocity_names(joint_names[i]); }))
+      for (std::string& name : visit_joint(joints[i], [&](const auto& joint) { return joint.velocity_names(joint_names[i]); }))
         names.push_back(std::move(name));
     }
     return names;
@@ -89,7 +88,7 @@ struct Model {
     std::vector<std::string> names;
     for (int i = 1; i < nbodies(); ++i) {
       if (joints[i].coupled) continue;
-      for (std::string& name : visit_joint(joints[i], [&](auto joint) { return joint.position_names(joint_names[i]); }))
+      for (std::string& name : visit_joint(joints[i], [&](const auto& joint) { return joint.position_names(joint_names[i]); }))
         names.push_back(std::move(name));
     }
     return names;
@@ -123,6 +122,7 @@ struct Model {
     joint_index_.clear();
     for (int f = 0; f < static_cast<int>(frames.size()); ++f) frame_index_[frames[f].name] = f;
     for (int i = 1; i < nbodies(); ++i) joint_index_[joint_names[i]] = i;
+    for (int i = 1; i < nbodies(); ++i) joints[i].update_model();
     has_multi_dof_tree_joints = false;
     for (int i = 1; i < nbodies(); ++i)
       if (joints[i].nv > 1 && !(floating_base && i == 1)) has_multi_dof_tree_joints = true;

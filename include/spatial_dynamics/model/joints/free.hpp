@@ -9,9 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "spatial_dynamics/model/joint.hpp"
-#include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/plucker_transform.hpp"
+#include "spatial_dynamics/model/joints/axis_operations.hpp"
 
 namespace spatial_dynamics {
 
@@ -22,39 +20,34 @@ struct FreeJoint {
 
   /// ^iX_λ = X_J X_tree with X_J = (Rᵀ, p): E = Rᵀ E_tree, r = r_tree + E_treeᵀ p. A quaternion
   /// that is not of unit norm (to 1e-6) throws std::invalid_argument naming the joint.
-  static void up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const std::string& name, const S* q,
-                           const S&, const S&, PluckerTransform<S>& X) {
+  PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S* q, const S&, const S&,
+                                const JointLabel& joint) const {
     const Eigen::Quaternion<S> quat(q[6], q[3], q[4], q[5]);
     using std::abs;
     if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
-      throw std::invalid_argument("joint '" + name + "': the quaternion (q[" + std::to_string(j.idx_q + 3) + ".." +
-                                  std::to_string(j.idx_q + 6) + "]) is not of unit norm");
-    const Vector3<S> p(q[0], q[1], q[2]);
-    X.E = quat.toRotationMatrix().transpose() * Xt.E;
-    X.r = Xt.r + Xt.E.transpose() * p;
+      throw std::invalid_argument("joint '" + joint.name + "': the quaternion (q[" + std::to_string(joint.idx_q + 3) + ".." +
+                                  std::to_string(joint.idx_q + 6) + "]) is not of unit norm");
+    return {quat.toRotationMatrix().transpose() * X_tree.E,
+            Vector3<S>(X_tree.r + X_tree.E.transpose() * Vector3<S>(q[0], q[1], q[2]))};
   }
   /// S q̇ = q̇.
-  static SD_INLINE MotionVector<S> motion(const Joint<S>&, const S&, const S&, const S* qd) {
+  SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
     return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
   }
-  static SD_INLINE MotionVector<S> bias(const Joint<S>&, const S&, const S&, const S*) { return MotionVector<S>::Zero(); }
-  /// Sᵀ (n ; f) = (n ; f).
-  template <class T>
-  static SD_INLINE void project(const Joint<S>&, const S&, const S&, const T* n, const T* f, T* out) {
-    for (int k = 0; k < 3; ++k) {
-      out[k] = n[k];
-      out[k + 3] = f[k];
-    }
+  /// c_J + v × S q̇ = v × q̇: c_J = 0.
+  SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S& s, const S& c) const {
+    return cross(v, motion(qd, s, c));
   }
-  /// U = Iᴬ S = Iᴬ.
-  static SD_INLINE void inertia_times_subspace(const Joint<S>&, const S&, const S&, const Matrix6<S>& I, Matrix6<S>& U) {
-    U = I;
-  }
-  static MotionVector<S> subspace_column(const Joint<S>&, const S&, const S&, int k) {
+  /// Sᵀ f = (n ; f).
+  SD_INLINE Vector6<S> project(const ForceVector<S>& f, const S&, const S&) const { return f.toVector(); }
+  /// U = I S = I.
+  SD_INLINE Matrix6<S> inertia_times(const Matrix6<S>& I, const S&, const S&) const { return I; }
+  MotionVector<S> column(int k, const S&, const S&) const {
     Vector6<S> e = Vector6<S>::Zero();
     e[k] = S(1);
     return MotionVector<S>(e);
   }
+
   static std::vector<std::string> position_names(const std::string& joint) {
     std::vector<std::string> names;
     for (const char* c : {"x", "y", "z", "qx", "qy", "qz", "qw"}) names.push_back(joint + "/" + c);

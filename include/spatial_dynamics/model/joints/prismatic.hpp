@@ -1,13 +1,11 @@
-// Prismatic joint: translation q along the unit axis a of the joint frame; S = (0 ; a),
-// constant (RBDA Table 4.1).
+// Prismatic joint: translation q along a general unit axis a of the joint frame; S = (0 ; a),
+// constant (RBDA Table 4.1). Axes along x, y or z are PrismaticAxisJoint.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "spatial_dynamics/model/joints/axis_operations.hpp"
-#include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/plucker_transform.hpp"
 
 namespace spatial_dynamics {
 
@@ -15,33 +13,32 @@ template <class S>
 struct PrismaticJoint {
   static constexpr int nq = 1, nv = 1;
   static constexpr int angle_coordinate = -1;
+  Vector3<S> axis = Vector3<S>::UnitZ();
 
   /// ^iX_λ = xlt(q a) X_tree: E = E_tree, r = r_tree + E_treeᵀ (q a).
-  static SD_INLINE void up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const std::string&, const S* q,
-                                     const S&, const S&, PluckerTransform<S>& X) {
-    X.E = Xt.E;
-    X.r = Xt.r + Xt.E.transpose() * detail::scaled_axis(j, q[0]);
+  SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S* q, const S&, const S&,
+                                          const JointLabel&) const {
+    return {X_tree.E, Vector3<S>(X_tree.r + X_tree.E.transpose() * Vector3<S>(axis * q[0]))};
   }
   /// S q̇ = (0 ; q̇ a).
-  static SD_INLINE MotionVector<S> motion(const Joint<S>& j, const S&, const S&, const S* qd) {
-    return {Vector3<S>::Zero(), detail::scaled_axis(j, qd[0])};
+  SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
+    return {Vector3<S>::Zero(), Vector3<S>(axis * qd[0])};
   }
-  /// c_J = 0: S is constant.
-  static SD_INLINE MotionVector<S> bias(const Joint<S>&, const S&, const S&, const S*) { return MotionVector<S>::Zero(); }
-  /// Sᵀ (n ; f) = a · f.
-  template <class T>
-  static SD_INLINE void project(const Joint<S>& j, const S&, const S&, const T*, const T* f, T* out) {
-    out[0] = detail::dot_axis(j, f);
+  /// c_J + v × S q̇ = (0 ; ω × q̇ a): c_J = 0.
+  SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
+    return {Vector3<S>::Zero(), cross_3d(v.angular, Vector3<S>(axis * qd[0]))};
   }
-  /// U = Iᴬ S: one column of Iᴬ for a coordinate axis.
-  static SD_INLINE void inertia_times_subspace(const Joint<S>& j, const S&, const S&, const Matrix6<S>& I, Matrix6<S>& U) {
-    U.col(0) = detail::combine_columns_along_axis(j, I, 3);
+  /// Sᵀ f = a · f.
+  SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
+    return Eigen::Matrix<S, 1, 1>(axis.dot(f.linear));
   }
-  static MotionVector<S> subspace_column(const Joint<S>& j, const S&, const S&, int) {
-    return {Vector3<S>::Zero(), j.axis};
+  /// U = I S = I (0 ; a).
+  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const {
+    return I.template rightCols<3>() * axis;
   }
-  /// The names of q's and q̇'s coordinates (the same for this joint).
-  static std::vector<std::string> position_names(const std::string& joint) { return velocity_names(joint); }
+  MotionVector<S> column(int, const S&, const S&) const { return {Vector3<S>::Zero(), axis}; }
+
+  static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }
 };
 

@@ -1,47 +1,49 @@
-// Revolute joint (URDF revolute and continuous): rotation θ about the unit axis a of the joint
-// frame; S = (a ; 0), constant (RBDA Table 4.1).
+// Revolute joint about a general unit axis a of the joint frame (URDF revolute and continuous):
+// S = (a ; 0), constant (RBDA Table 4.1); E_J(θ) = rot(a, θ)ᵀ (RBDA eq. 2.24, transposed).
+// Axes along x, y or z are RevoluteAxisJoint.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "spatial_dynamics/model/joints/axis_operations.hpp"
-#include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/plucker_transform.hpp"
 
 namespace spatial_dynamics {
 
 template <class S>
 struct RevoluteJoint {
   static constexpr int nq = 1, nv = 1;
-  static constexpr int angle_coordinate = 0;  // θ = q[0]; its sine s and cosine c are computed once per call
+  static constexpr int angle_coordinate = 0;  // θ = q[0]; s, c = sin θ, cos θ
+  Vector3<S> axis = Vector3<S>::UnitZ();
 
-  /// ^iX_λ = X_J(θ) X_tree: E = E_J(θ) E_tree, r = r_tree.
-  static SD_INLINE void up_transform(const Joint<S>& j, const PluckerTransform<S>& Xt, const std::string&, const S*,
-                                     const S& s, const S& c, PluckerTransform<S>& X) {
-    X.r = Xt.r;
-    detail::rotate_about_joint_axis(j, Xt.E, s, c, X.E);
+  /// ^iX_λ = X_J(θ) X_tree: E = rot(a, θ)ᵀ E_tree, r = r_tree.
+  SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S*, const S& s, const S& c,
+                                          const JointLabel&) const {
+    PluckerTransform<S> X;
+    X.E = detail::rotated_about_axis(X_tree.E, axis, c, s);
+    X.r = X_tree.r;
+    return X;
   }
   /// S q̇ = (q̇ a ; 0).
-  static SD_INLINE MotionVector<S> motion(const Joint<S>& j, const S&, const S&, const S* qd) {
-    return {detail::scaled_axis(j, qd[0]), Vector3<S>::Zero()};
+  SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
+    return {Vector3<S>(axis * qd[0]), Vector3<S>::Zero()};
   }
-  /// c_J = S̊ q̇ = 0: S is constant.
-  static SD_INLINE MotionVector<S> bias(const Joint<S>&, const S&, const S&, const S*) { return MotionVector<S>::Zero(); }
-  /// Sᵀ (n ; f) = a · n.
-  template <class T>
-  static SD_INLINE void project(const Joint<S>& j, const S&, const S&, const T* n, const T*, T* out) {
-    out[0] = detail::dot_axis(j, n);
+  /// c_J + v × S q̇ = (ω × q̇ a ; v_O × q̇ a): c_J = 0.
+  SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
+    const Vector3<S> w(axis * qd[0]);
+    return {cross_3d(v.angular, w), cross_3d(v.linear, w)};
   }
-  /// U = Iᴬ S: one column of Iᴬ for a coordinate axis.
-  static SD_INLINE void inertia_times_subspace(const Joint<S>& j, const S&, const S&, const Matrix6<S>& I, Matrix6<S>& U) {
-    U.col(0) = detail::combine_columns_along_axis(j, I, 0);
+  /// Sᵀ f = a · n.
+  SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
+    return Eigen::Matrix<S, 1, 1>(axis.dot(f.angular));
   }
-  static MotionVector<S> subspace_column(const Joint<S>& j, const S&, const S&, int) {
-    return {j.axis, Vector3<S>::Zero()};
+  /// U = I S = I (a ; 0).
+  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const {
+    return I.template leftCols<3>() * axis;
   }
-  /// The names of q's and q̇'s coordinates (the same for this joint).
-  static std::vector<std::string> position_names(const std::string& joint) { return velocity_names(joint); }
+  MotionVector<S> column(int, const S&, const S&) const { return {axis, Vector3<S>::Zero()}; }
+
+  static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }
 };
 
