@@ -1,14 +1,11 @@
-// The library's double entry points (declared at the end of each algorithm header): each forwards
-// to the build chosen once, at the first call, from the CPU and SPATIAL_DYNAMICS_SIMD
-// (simd_backend.hpp). One indirect call per algorithm call.
+// The library's double entry points (compiled/compiled_functions.def): each forwards to the build
+// chosen once, at the first call, from the CPU and SPATIAL_DYNAMICS_SIMD (simd_backend.hpp). One
+// indirect call per algorithm call.
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "spatial_dynamics/algorithms.hpp"
-#include "spatial_dynamics/algorithms/aba_refined.hpp"
-#include "spatial_dynamics/algorithms/rnea_batch.hpp"
 #include "spatial_dynamics/compiled/backend_table.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
 
@@ -53,84 +50,11 @@ const BackendTable& simd_backend_table(const char* request) {
 }  // namespace detail
 
 using detail::chosen_backend;
-using Vec = detail::BackendTable::Vec;
-using Forces = detail::BackendTable::Forces;
 
 const char* simd_backend() { return chosen_backend().name; }
 
-const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd,
-                            const Vec& qdd) {
-  return chosen_backend().rnea(model, data, q, qd, qdd, nullptr);
-}
-const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd, const Vec& qdd,
-                            const Forces& f_ext) {
-  return chosen_backend().rnea(model, data, q, qd, qdd, &f_ext);
-}
-const VectorX<double>& gravity_torques(const Model<double>& model, Data<double>& data, const Vec& q) {
-  return chosen_backend().gravity_torques(model, data, q);
-}
-const VectorX<double>& nonlinear_effects(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd) {
-  return chosen_backend().nonlinear_effects(model, data, q, qd);
-}
-const VectorX<double>& aba(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd,
-                           const Vec& tau) {
-  return chosen_backend().aba(model, data, q, qd, tau, nullptr);
-}
-const VectorX<double>& aba(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd, const Vec& tau,
-                           const Forces& f_ext) {
-  return chosen_backend().aba(model, data, q, qd, tau, &f_ext);
-}
-const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd,
-                                        const Vec& tau) {
-  return chosen_backend().forward_dynamics(model, data, q, qd, tau, nullptr);
-}
-const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd,
-                                        const Vec& tau, const Forces& f_ext) {
-  return chosen_backend().forward_dynamics(model, data, q, qd, tau, &f_ext);
-}
-const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
-                                                 const Vec& qd, const Vec& qdd) {
-  return chosen_backend().inverse_dynamics_actuated(model, data, q, qd, qdd, nullptr);
-}
-const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
-                                                 const Vec& qd, const Vec& qdd, const Forces& f_ext) {
-  return chosen_backend().inverse_dynamics_actuated(model, data, q, qd, qdd, &f_ext);
-}
-const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
-                                                 const Vec& qd, const Vec& tau) {
-  return chosen_backend().forward_dynamics_actuated(model, data, q, qd, tau, nullptr);
-}
-const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data, const Vec& q,
-                                                 const Vec& qd, const Vec& tau, const Forces& f_ext) {
-  return chosen_backend().forward_dynamics_actuated(model, data, q, qd, tau, &f_ext);
-}
-const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
-                                   RefinementWorkspace<double, DoubleDouble>& ws, const Vec& q, const Vec& qd,
-                                   const Vec& tau, int max_iterations) {
-  return chosen_backend().aba_refined(model, data, ws, q, qd, tau, max_iterations);
-}
-const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
-                                   RefinementWorkspace<double, long double>& ws, const Vec& q, const Vec& qd,
-                                   const Vec& tau, int max_iterations) {
-  return chosen_backend().aba_refined_long_double(model, data, ws, q, qd, tau, max_iterations);
-}
-const MatrixX<double>& crba(const Model<double>& model, Data<double>& data, const Vec& q) {
-  return chosen_backend().crba(model, data, q);
-}
-void forward_kinematics(const Model<double>& model, Data<double>& data, const Vec& q) {
-  chosen_backend().forward_kinematics(model, data, q, nullptr);
-}
-void forward_kinematics(const Model<double>& model, Data<double>& data, const Vec& q, const Vec& qd) {
-  chosen_backend().forward_kinematics(model, data, q, &qd);
-}
-const Matrix6X<double>& frame_jacobian(const Model<double>& model, Data<double>& data, const Vec& q, int frame,
-                                       ReferenceFrame reference) {
-  return chosen_backend().frame_jacobian(model, data, q, frame, reference);
-}
-void rnea_batch(const Model<double>& model, BatchData<double, kDefaultBatchLanes<double>>& data,
-                const ConstMatrixRef<double>& q, const ConstMatrixRef<double>& qd, const ConstMatrixRef<double>& qdd,
-                MatrixRef<double> tau) {
-  chosen_backend().rnea_batch(model, data, q, qd, qdd, tau);
-}
+#define SD_COMPILED(member, ret, name, params, args) \
+  ret name params { return chosen_backend().member args; }
+#include "spatial_dynamics/compiled/compiled_functions.def"
 
 }  // namespace spatial_dynamics

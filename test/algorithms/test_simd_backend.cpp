@@ -89,8 +89,8 @@ TEST_P(BackendsAgree, OnRandomStates) {
     QD.col(k) = qd;
     QDD.col(k) = qdd;
     const VectorXd tau = sd::rnea<double>(model, here, q, qd, qdd);
-    compare(tau, VectorXd(portable.rnea(model, data_portable, q, qd, qdd, nullptr)),
-            VectorXd(avx2.rnea(model, data_avx2, q, qd, qdd, nullptr)), "rnea");
+    compare(tau, VectorXd(portable.rnea(model, data_portable, q, qd, qdd)),
+            VectorXd(avx2.rnea(model, data_avx2, q, qd, qdd)), "rnea");
     compare(VectorXd(sd::gravity_torques<double>(model, here, q)),
             VectorXd(portable.gravity_torques(model, data_portable, q)),
             VectorXd(avx2.gravity_torques(model, data_avx2, q)), "gravity_torques");
@@ -98,11 +98,11 @@ TEST_P(BackendsAgree, OnRandomStates) {
             VectorXd(portable.nonlinear_effects(model, data_portable, q, qd)),
             VectorXd(avx2.nonlinear_effects(model, data_avx2, q, qd)), "nonlinear_effects");
     compare(VectorXd(sd::aba<double>(model, here, q, qd, tau)),
-            VectorXd(portable.aba(model, data_portable, q, qd, tau, nullptr)),
-            VectorXd(avx2.aba(model, data_avx2, q, qd, tau, nullptr)), "aba");
+            VectorXd(portable.aba(model, data_portable, q, qd, tau)),
+            VectorXd(avx2.aba(model, data_avx2, q, qd, tau)), "aba");
     compare(VectorXd(sd::forward_dynamics<double>(model, here, q, qd, tau)),
-            VectorXd(portable.forward_dynamics(model, data_portable, q, qd, tau, nullptr)),
-            VectorXd(avx2.forward_dynamics(model, data_avx2, q, qd, tau, nullptr)), "forward_dynamics");
+            VectorXd(portable.forward_dynamics(model, data_portable, q, qd, tau)),
+            VectorXd(avx2.forward_dynamics(model, data_avx2, q, qd, tau)), "forward_dynamics");
     compare(VectorXd(sd::aba_refined<double, sd::DoubleDouble>(model, here, ws_here, q, qd, tau)),
             VectorXd(portable.aba_refined(model, data_portable, ws_portable, q, qd, tau, 8)),
             VectorXd(avx2.aba_refined(model, data_avx2, ws_avx2, q, qd, tau, 8)), "aba_refined");
@@ -115,8 +115,8 @@ TEST_P(BackendsAgree, OnRandomStates) {
     // The library's own entry points run one of the two builds.
     const VectorXd chosen = sd::rnea(model, data_portable, q, qd, qdd);
     EXPECT_TRUE(chosen == VectorXd(std::string(sd::simd_backend()) == "portable"
-                                       ? portable.rnea(model, data_avx2, q, qd, qdd, nullptr)
-                                       : avx2.rnea(model, data_avx2, q, qd, qdd, nullptr)));
+                                       ? portable.rnea(model, data_avx2, q, qd, qdd)
+                                       : avx2.rnea(model, data_avx2, q, qd, qdd)));
   }
   MatrixXd T_here(model.nv, kStates), T_portable(model.nv, kStates), T_avx2(model.nv, kStates);
   sd::rnea_batch<double, sd::kDefaultBatchLanes<double>>(model, batch_here, Q, QD, QDD, T_here);

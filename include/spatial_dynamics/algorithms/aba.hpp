@@ -13,6 +13,7 @@
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/vector3_form.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -360,14 +361,5 @@ const VectorX<S>& aba(const Model<S>& model, Data<S>& data, const ConstVectorRef
   detail::check_finite_result(model, "forward dynamics: the acceleration", data.qdd);
   return data.qdd;
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const VectorX<double>& aba(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                           const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau);
-const VectorX<double>& aba(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                           const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
-                           const std::vector<ForceVector<double>>& f_ext);
-#endif
 
 }  // namespace spatial_dynamics

@@ -31,6 +31,7 @@
 #include "spatial_dynamics/algorithms/wide_residual_form.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -260,17 +261,5 @@ const VectorX<S>& aba_refined(const Model<S>& model, Data<S>& data, RefinementWo
   }
   return data.qdd;
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
-                                   RefinementWorkspace<double, DoubleDouble>& ws, const ConstVectorRef<double>& q,
-                                   const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
-                                   int max_iterations = 8);
-const VectorX<double>& aba_refined(const Model<double>& model, Data<double>& data,
-                                   RefinementWorkspace<double, long double>& ws, const ConstVectorRef<double>& q,
-                                   const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
-                                   int max_iterations = 8);
-#endif
 
 }  // namespace spatial_dynamics

@@ -14,6 +14,7 @@
 #include "spatial_dynamics/algorithms/forward_dynamics.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -109,23 +110,5 @@ const VectorX<S>& forward_dynamics_actuated(const Model<S>& model, Data<S>& data
                                             const std::vector<ForceVector<S>>& f_ext) {
   return forward_dynamics(model, data, q, qd, detail::effort_less_actuator_forces(model, data, qd, tau), f_ext);
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data,
-                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
-                                                 const ConstVectorRef<double>& qdd);
-const VectorX<double>& inverse_dynamics_actuated(const Model<double>& model, Data<double>& data,
-                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
-                                                 const ConstVectorRef<double>& qdd,
-                                                 const std::vector<ForceVector<double>>& f_ext);
-const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data,
-                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
-                                                 const ConstVectorRef<double>& tau);
-const VectorX<double>& forward_dynamics_actuated(const Model<double>& model, Data<double>& data,
-                                                 const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd,
-                                                 const ConstVectorRef<double>& tau,
-                                                 const std::vector<ForceVector<double>>& f_ext);
-#endif
 
 }  // namespace spatial_dynamics

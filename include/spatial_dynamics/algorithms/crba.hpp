@@ -7,6 +7,7 @@
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/vector3_form.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -274,10 +275,5 @@ const MatrixX<S>& crba(const Model<S>& model, Data<S>& data, const ConstVectorRe
   detail::check_finite_result(model, "mass matrix: the column", data.M);
   return data.M;
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const MatrixX<double>& crba(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q);
-#endif
 
 }  // namespace spatial_dynamics

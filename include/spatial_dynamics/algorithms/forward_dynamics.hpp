@@ -10,6 +10,7 @@
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
 
 namespace spatial_dynamics {
@@ -49,14 +50,5 @@ const VectorX<S>& forward_dynamics(const Model<S>& model, Data<S>& data, const C
   detail::check_external_forces(model, f_ext);
   return detail::crba_forward_dynamics(model, data, q, qd, tau, f_ext.data());
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                                        const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau);
-const VectorX<double>& forward_dynamics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                                        const ConstVectorRef<double>& qd, const ConstVectorRef<double>& tau,
-                                        const std::vector<ForceVector<double>>& f_ext);
-#endif
 
 }  // namespace spatial_dynamics

@@ -6,6 +6,7 @@
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -35,11 +36,5 @@ const Matrix6X<S>& frame_jacobian(const Model<S>& model, Data<S>& data, const Co
   detail::check_finite_result(model, "frame Jacobian: the column", data.J);
   return data.J;
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const Matrix6X<double>& frame_jacobian(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                                       int frame, ReferenceFrame reference);
-#endif
 
 }  // namespace spatial_dynamics

@@ -4,6 +4,7 @@
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -59,12 +60,5 @@ void forward_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorR
                               detail::non_finite_reason());
   }
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-void forward_kinematics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q);
-void forward_kinematics(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                        const ConstVectorRef<double>& qd);
-#endif
 
 }  // namespace spatial_dynamics

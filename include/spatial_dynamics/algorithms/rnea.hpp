@@ -8,6 +8,7 @@
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/algorithms/vector3_form.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -178,17 +179,5 @@ const VectorX<S>& nonlinear_effects(const Model<S>& model, Data<S>& data, const 
                                     const ConstVectorRef<S>& qd) {
   return rnea<S>(model, data, q, qd, data.zero_v);
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                            const ConstVectorRef<double>& qd, const ConstVectorRef<double>& qdd);
-const VectorX<double>& rnea(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q,
-                            const ConstVectorRef<double>& qd, const ConstVectorRef<double>& qdd,
-                            const std::vector<ForceVector<double>>& f_ext);
-const VectorX<double>& gravity_torques(const Model<double>& model, Data<double>& data, const ConstVectorRef<double>& q);
-const VectorX<double>& nonlinear_effects(const Model<double>& model, Data<double>& data,
-                                         const ConstVectorRef<double>& q, const ConstVectorRef<double>& qd);
-#endif
 
 }  // namespace spatial_dynamics

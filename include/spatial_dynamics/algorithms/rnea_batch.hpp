@@ -17,6 +17,7 @@
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/joint_kernels_lanes.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/batch_data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -142,12 +143,5 @@ void rnea_batch(const Model<S>& model, BatchData<S, L>& data, const ConstMatrixR
     if (!detail::lanes_all_finite(data.tau.data(), model.nv)) detail::check_finite_columns(model, tau, c0, count);
   }
 }
-
-#ifdef SD_COMPILED_DOUBLE
-// The double instances: compiled into the library, portable and AVX2 + FMA (simd_backend.hpp).
-void rnea_batch(const Model<double>& model, BatchData<double, kDefaultBatchLanes<double>>& data,
-                const ConstMatrixRef<double>& q, const ConstMatrixRef<double>& qd, const ConstMatrixRef<double>& qdd,
-                MatrixRef<double> tau);
-#endif
 
 }  // namespace spatial_dynamics
