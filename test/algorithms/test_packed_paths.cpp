@@ -315,7 +315,7 @@ VectorXd tau_less_gravity_in_quad(const sd::Model<double>& model, const sd::Data
   return out;
 }
 
-// The ABA's gravity split on packed 3-vectors (spatial/wide_vector3.hpp) against the same sums in
+// The ABA's gravity split on packed 3-vectors (spatial/number/wide_vector3.hpp) against the same sums in
 // float128 from the same transforms: τ − τ_g is formed in double-double and rounded once, so it
 // is within one unit in the last place of the float128 value. And the ABA on this path within the
 // anchors on the shared robots (test_gravity_split.cpp: the build the library dispatches to).
@@ -403,7 +403,7 @@ TEST(PackedPaths, AbaVelocityPassAgainstMatrices) {
   std::printf("packed ABA outward pass: worst relative difference %.1e from the 6x6 products\n", worst);
 }
 
-// The ABA's inward step on an articulated inertia's packed blocks (spatial/packed3_articulated_inertia.hpp):
+// The ABA's inward step on an articulated inertia's packed blocks (spatial/number/packed3_articulated_inertia.hpp):
 // Xᵀ (Iᴬ − U D⁻¹ Uᵀ) X and Xᵀ Iᴬ X added to an inertia, (Iᴬ − U D⁻¹ Uᵀ) c and Iᴬ v, against the same products of
 // 6×6 matrices (PluckerTransform::toMotionMatrix) on random transforms and random symmetric
 // positive definite Iᴬ, with U a column of Iᴬ (a coordinate axis' U = Iᴬ S).

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "spatial_dynamics/reference/high_precision.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 
 namespace sd = spatial_dynamics;
 using sd::DoubleDouble;

@@ -35,7 +35,7 @@
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 
 namespace spatial_dynamics {
 

@@ -1,12 +1,12 @@
 // The CRBA's carry of a column to a run of revolute ancestors in base coordinates, several
-// ancestors at once (spatial/lanes.hpp): used by crba.hpp on deep trees.
+// ancestors at once (spatial/number/lanes.hpp): used by crba.hpp on deep trees.
 #pragma once
 
 #include <algorithm>
 
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/lanes.hpp"
+#include "spatial_dynamics/spatial/number/lanes.hpp"
 
 namespace spatial_dynamics {
 namespace detail {

@@ -13,7 +13,7 @@
 // The sums are the RNEA's to the letter, not the shorter form with subtree masses and first
 // moments: that one takes the transforms' rotations for exactly orthogonal, which they are only to
 // double's precision, and on a long chain with general axes the difference outgrows the rounding.
-// The wide 3-vectors and their operations are spatial/wide_vector3.hpp's (packed where the CPU has it).
+// The wide 3-vectors and their operations are spatial/number/wide_vector3.hpp's (packed where the CPU has it).
 #pragma once
 
 #include <type_traits>
@@ -22,7 +22,7 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/wide_vector3.hpp"
+#include "spatial_dynamics/spatial/number/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 namespace detail {

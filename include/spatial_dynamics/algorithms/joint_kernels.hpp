@@ -13,7 +13,7 @@
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/joints/joint_axis_shortcuts.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/lane_trigonometry.hpp"
+#include "spatial_dynamics/spatial/number/lane_trigonometry.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 
 namespace spatial_dynamics {

@@ -1,4 +1,4 @@
-// Per-joint arithmetic of joint_kernels.hpp over L lanes (spatial/lanes.hpp): X_J(q) X_tree,
+// Per-joint arithmetic of joint_kernels.hpp over L lanes (spatial/number/lanes.hpp): X_J(q) X_tree,
 // S q̇ and Sᵀ f, each lane holding one state, and the lanes' form of the RNEA's passes (rnea.hpp).
 // The joint type and axis are the same in every lane, so the dispatch happens once per block of
 // lanes; the arithmetic follows the one-state kernels formula by formula.
@@ -6,8 +6,8 @@
 
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/lane_trigonometry.hpp"
-#include "spatial_dynamics/spatial/lanes.hpp"
+#include "spatial_dynamics/spatial/number/lane_trigonometry.hpp"
+#include "spatial_dynamics/spatial/number/lanes.hpp"
 
 namespace spatial_dynamics {
 namespace detail {

@@ -1,6 +1,6 @@
 // Inverse dynamics of many states of one model: τ_k = ID(q_k, q̇_k, q̈_k) for the columns k of a
 // trajectory. The states go through the RNEA's passes of rnea.hpp (RBDA Table 5.1) L at a time,
-// one per lane, on the lanes' form (joint_kernels_lanes.hpp, spatial/lanes.hpp): every operation
+// one per lane, on the lanes' form (joint_kernels_lanes.hpp, spatial/number/lanes.hpp): every operation
 // acts on all L states at once, which the compiler turns into vector instructions, and the joint
 // dispatch and the loads of the model's constants are shared by the L states. Columns are taken in
 // blocks of L; a last, partial block fills its unused lanes with a copy of its last state and

@@ -11,7 +11,7 @@
 #include "spatial_dynamics/algorithms/joint_kernels.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 
 namespace spatial_dynamics {
 namespace vec3 {

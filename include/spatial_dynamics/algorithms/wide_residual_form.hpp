@@ -18,8 +18,8 @@
 
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
-#include "spatial_dynamics/spatial/wide_vector3.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
+#include "spatial_dynamics/spatial/number/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 

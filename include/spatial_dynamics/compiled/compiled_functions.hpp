@@ -9,7 +9,7 @@
 #include "spatial_dynamics/model/batch_data.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 
 namespace spatial_dynamics {
 

@@ -1,5 +1,5 @@
 // The workspace of the batched algorithms (rnea_batch.hpp): Data's per-body buffers, each entry
-// holding L states side by side (spatial/lanes.hpp), plus one-state Data for the models the
+// holding L states side by side (spatial/number/lanes.hpp), plus one-state Data for the models the
 // batched kernels leave to the one-state algorithms. Allocated once from a Model; a call never
 // allocates. Like Data, it belongs to one thread.
 #pragma once
@@ -8,7 +8,7 @@
 
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/lanes.hpp"
+#include "spatial_dynamics/spatial/number/lanes.hpp"
 
 namespace spatial_dynamics {
 

@@ -7,15 +7,15 @@
 #include <vector>
 
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 #include "spatial_dynamics/spatial/articulated_inertia.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
-#include "spatial_dynamics/spatial/lanes.hpp"
+#include "spatial_dynamics/spatial/number/lanes.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
-#include "spatial_dynamics/spatial/wide_vector3.hpp"
+#include "spatial_dynamics/spatial/number/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 

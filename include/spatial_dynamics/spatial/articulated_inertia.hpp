@@ -7,7 +7,7 @@
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/packed3_articulated_inertia.hpp"
+#include "spatial_dynamics/spatial/number/packed3_articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 namespace spatial_dynamics {

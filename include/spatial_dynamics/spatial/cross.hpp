@@ -4,7 +4,7 @@
 
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 
 namespace spatial_dynamics {
 

@@ -8,7 +8,7 @@
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 
 namespace spatial_dynamics {
 

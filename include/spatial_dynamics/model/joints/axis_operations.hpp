@@ -6,11 +6,11 @@
 
 #include "spatial_dynamics/spatial/cross.hpp"
 #include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/lane_trigonometry.hpp"
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/lane_trigonometry.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 
 namespace spatial_dynamics {

@@ -1,12 +1,12 @@
 // A 3-vector of double-doubles held in two 4-lane registers (hi, lo), for the ABA's gravity split
-// (spatial/wide_vector3.hpp, for algorithms/gravity_split.hpp) and aba_refined's residual RNEA
+// (spatial/number/wide_vector3.hpp, for algorithms/gravity_split.hpp) and aba_refined's residual RNEA
 // (algorithms/wide_residual_form.hpp): the error-free transformations of double_double.hpp
 // (TwoSum, TwoProduct by a fused multiply-add) applied to three lanes at once. As there, sums are
 // not renormalised; lane 3 is a pad that no operation moves into lanes 0–2.
 #pragma once
 
-#include "spatial_dynamics/spatial/double_double.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 
 #ifdef SD_PACKED3
 #include <immintrin.h>

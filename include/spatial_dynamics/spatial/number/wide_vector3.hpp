@@ -7,9 +7,9 @@
 
 #include <type_traits>
 
-#include "spatial_dynamics/spatial/double_double.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
 #include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/packed3_double_double.hpp"
+#include "spatial_dynamics/spatial/number/packed3_double_double.hpp"
 #include "spatial_dynamics/spatial/rotation_about_axis.hpp"
 
 namespace spatial_dynamics {

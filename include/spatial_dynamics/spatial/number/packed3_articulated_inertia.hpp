@@ -5,7 +5,7 @@
 #pragma once
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/packed3.hpp"
+#include "spatial_dynamics/spatial/number/packed3.hpp"
 
 namespace spatial_dynamics {
 #ifdef SD_PACKED3

@@ -1,4 +1,4 @@
-// sin and cos of every lane at once (spatial/lanes.hpp), for the joint rotations of the batched
+// sin and cos of every lane at once (spatial/number/lanes.hpp), for the joint rotations of the batched
 // algorithms: a call of the C library's sincos per lane would cost as much as the rest of a
 // revolute joint's arithmetic. Double lanes use the classic scheme: reduce x by the nearest
 // multiple k of π/2 (Cody–Waite, π/2 split into three 33-bit parts so that k·part is exact for
@@ -13,8 +13,8 @@
 #include <cmath>
 #include <type_traits>
 
-#include "spatial_dynamics/spatial/double_double.hpp"
-#include "spatial_dynamics/spatial/lanes.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
+#include "spatial_dynamics/spatial/number/lanes.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
