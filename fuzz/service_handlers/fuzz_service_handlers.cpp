@@ -56,9 +56,8 @@ struct Fixture {
 };
 
 std::shared_ptr<const sd::ServedScene> make_scene(const std::shared_ptr<const sd::ServedRobot>& robot,
-                                                  sd::Model<double> model, std::uint64_t version) {
+                                                  sd::Model<double> model) {
   auto scene = std::make_shared<sd::ServedScene>();
-  scene->version = version;
   scene->robot = robot;
   scene->model = std::make_shared<const sd::Model<double>>(std::move(model));
   scene->decoder = std::make_unique<sd::JointRequestDecoder>(*scene->model, robot->cache->jointNames());
@@ -80,9 +79,9 @@ Fixture& fixture() {
     const sd::Model<double>& full = *robot->bare;
     sd::Scene arm;
     for (int k = 1; k <= 7; ++k) arm.kept_joints.push_back("panda_joint" + std::to_string(k));
-    fx.scenes.push_back(make_scene(robot, full, 1));
-    fx.scenes.push_back(make_scene(robot, sd::reduce_model(full, arm), 2));
-    fx.scenes.push_back(make_scene(robot, sd::couple_mimic_joints(full), 3));
+    fx.scenes.push_back(make_scene(robot, full));
+    fx.scenes.push_back(make_scene(robot, sd::reduce_model(full, arm)));
+    fx.scenes.push_back(make_scene(robot, sd::couple_mimic_joints(full)));
     fx.frames = std::make_unique<FixedFrames>(robot->root_frame);
     return fx;
   }();
@@ -133,7 +132,7 @@ class RequestDecoder {
     return w;
   }
   std::vector<geometry_msgs::WrenchStamped> wrenches() {
-    std::vector<geometry_msgs::WrenchStamped> w(in_.ConsumeIntegralInRange<std::size_t>(0, 3));
+    std::vector<geometry_msgs::WrenchStamped> w(in_.ConsumeIntegralInRange<std::size_t>(0));
     for (auto& x : w) x = wrench();
     return w;
   }
@@ -234,7 +233,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t selector = data[0];
   const std::size_t index = (selector >> 3) % fx.scenes.size();
   const sd::ServedScene& scene = *fx.scenes[index];
-  sd::Workspace& ws = sd::workspace_for(index, scene);
+  const sd::WorkspacePool::Lease workspace = scene.workspaces.acquire(*scene.model);
+  sd::Workspace& ws = *workspace;
   FuzzedDataProvider bytes(data + 1, size - 1);
   RequestDecoder decoder(bytes, *scene.model);
   decoder.set_names(scene);

@@ -90,9 +90,9 @@ PluckerTransform<double> frame_transform(const ServedScene& scene, Workspace& ws
     if (!model.hasFrame(*frame) && !frames.hasFrame(*frame))
       throw std::runtime_error("frame '" + *frame + "' is known neither to the robot model nor to tf2");
   if (!source_in_model && !target_in_model) return frames.transform(target, source, stamp);
-  forward_kinematics(model, *ws.data, ws.q);
+  forward_kinematics(model, ws.data, ws.q);
   // ^FX_0 of a model frame; the base coordinates are those of the root link's frame.
-  auto from_base = [&](const std::string& name) { return ws.data->X_frame_base[model.frameIndex(name)]; };
+  auto from_base = [&](const std::string& name) { return ws.data.X_frame_base[model.frameIndex(name)]; };
   if (source_in_model && target_in_model) return from_base(target) * from_base(source).inverse();
   // One robot frame and one outside frame: chain through the robot's root link.
   const std::string& root = scene.robot->root_frame;
@@ -111,24 +111,11 @@ void append_message(std::string& message, const std::string& more) {
   message += more;
 }
 
-Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene) {
-  thread_local std::vector<Workspace> workspaces;
-  if (workspaces.size() <= scene_index) workspaces.resize(scene_index + 1);
-  Workspace& ws = workspaces[scene_index];
-  if (ws.version != scene.version) {
-    ws.data = std::make_unique<Data<double>>(*scene.model);
-    ws.batch = std::make_unique<BatchData<double>>(*scene.model);
-    ws.f_ext.assign(scene.model->nbodies(), ForceVector<double>::Zero());
-    ws.version = scene.version;
-  }
-  return ws;
-}
-
 void compute_inverse_dynamics(const ServedScene& scene, Workspace& ws, const InverseDynamics::Request& req,
                               InverseDynamics::Response& res) {
   const bool with_wrenches = decode_dynamics_request(scene, ws, req, "acceleration", req.acceleration);
   const Model<double>& model = model_for(scene, req.rigid_body_only);
-  Data<double>& data = *ws.data;
+  Data<double>& data = ws.data;
   const bool actuated = with_actuators(scene, req.rigid_body_only);
   const Eigen::VectorXd& tau =
       actuated ? (with_wrenches ? inverse_dynamics_actuated(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
@@ -145,7 +132,7 @@ void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const For
                               ForwardDynamics::Response& res) {
   const bool with_wrenches = decode_dynamics_request(scene, ws, req, "effort", req.effort);
   const Model<double>& model = model_for(scene, req.rigid_body_only);
-  Data<double>& data = *ws.data;
+  Data<double>& data = ws.data;
   const Eigen::VectorXd& qdd =
       with_actuators(scene, req.rigid_body_only)
           ? (with_wrenches ? forward_dynamics_actuated(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
@@ -161,7 +148,7 @@ void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const For
 void compute_mass_matrix(const ServedScene& scene, Workspace& ws, const MassMatrix::Request& req,
                          MassMatrix::Response& res) {
   decode_positions(scene, ws, req.name, req.position);
-  const Eigen::MatrixXd& M = crba(model_for(scene, req.rigid_body_only), *ws.data, ws.q);  // with armature
+  const Eigen::MatrixXd& M = crba(model_for(scene, req.rigid_body_only), ws.data, ws.q);  // with armature
   check_finite(M, "mass matrix");
   res.name = scene.decoder->jointNames();
   res.mass_matrix.resize(M.size());
@@ -201,8 +188,8 @@ bool compute_latest_torques(const ServedScene& scene, Workspace& ws, std::vector
   check(decoder.decode("position", {}, {}, {}, JointRequestDecoder::Default::LatestPosition, ws.state, ws.q));
   check(decoder.decode("velocity", {}, {}, {}, JointRequestDecoder::Default::LatestVelocity, ws.state, ws.qd));
   const Eigen::VectorXd& tau = with_actuators(scene, false)
-                                   ? inverse_dynamics_actuated(*scene.model, *ws.data, ws.q, ws.qd, ws.data->zero_v)
-                                   : nonlinear_effects(*scene.model, *ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
+                                   ? inverse_dynamics_actuated(*scene.model, ws.data, ws.q, ws.qd, ws.data.zero_v)
+                                   : nonlinear_effects(*scene.model, ws.data, ws.q, ws.qd);  // ID(q, q̇, 0)
   check_finite(tau, "computed torque");
   copy_to(ws.q, position);
   copy_to(ws.qd, velocity);

@@ -151,9 +151,9 @@ void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws
     append_message(notes, differences_note(missing_velocities, missing_accelerations, count));
 
   try {
-    rnea_batch(model, *ws.batch, q, qd, qdd, ws.trajectory_tau);  // with armature ⊙ q̈
+    rnea_batch(model, ws.batch, q, qd, qdd, ws.trajectory_tau);  // with armature ⊙ q̈
     if (with_actuators(scene, req.rigid_body_only))                 // and the damping and friction forces
-      for (std::size_t k = 0; k < count; ++k) ws.trajectory_tau.col(k) += actuator_forces(model, *ws.data, qd.col(k));
+      for (std::size_t k = 0; k < count; ++k) ws.trajectory_tau.col(k) += actuator_forces(model, ws.data, qd.col(k));
   } catch (const std::exception& e) {  // "state k: …" is point k
     std::string message = e.what();
     if (message.rfind("state ", 0) == 0) message.replace(0, 6, "point ");

@@ -13,6 +13,7 @@
 #include "spatial_dynamics/ros/actuator_parameters.hpp"
 #include "spatial_dynamics/ros/joint_request_decoder.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
+#include "spatial_dynamics/ros/workspace_pool.hpp"
 
 namespace spatial_dynamics {
 
@@ -29,13 +30,13 @@ struct ServedRobot {
 
 /// One scene's model: immutable, replaced when a locked joint moves or the robot changes.
 struct ServedScene {
-  std::uint64_t version = 0;                  // unique per build; keys the per-thread workspaces
   std::shared_ptr<const ServedRobot> robot;
   std::shared_ptr<const Model<double>> model;
   std::shared_ptr<const Model<double>> rigid_model;  // the same without actuator terms (rigid_body_only)
   std::unique_ptr<JointRequestDecoder> decoder;
   std::vector<std::pair<int, double>> locks;  // (joint-state index, locked position)
   std::string error;                          // why the scene has no model ("" when it has one)
+  WorkspacePool workspaces;                   // the calls' buffers for this scene's model
 };
 
 }  // namespace spatial_dynamics

@@ -20,19 +20,6 @@
 
 namespace spatial_dynamics {
 
-/// Per-thread buffers of one scene, rebuilt when the scene's model changes (Data is allocated
-/// once per model).
-struct Workspace {
-  std::uint64_t version = 0;
-  std::unique_ptr<Data<double>> data;
-  std::unique_ptr<BatchData<double>> batch;  // trajectories: several states per RNEA pass
-  JointStateCache::Snapshot state;
-  std::vector<int> indices;
-  Eigen::VectorXd q, qd, x;
-  std::vector<ForceVector<double>> f_ext;
-  Eigen::MatrixXd trajectory_q, trajectory_qd, trajectory_qdd, trajectory_tau;  // one column per point
-};
-
 /// Whether an answer includes the actuator terms: the node has an actuator model (~actuator_model)
 /// and the request did not ask for rigid_body_only.
 inline bool with_actuators(const ServedScene& scene, bool rigid_body_only) {
@@ -46,9 +33,6 @@ inline const Model<double>& model_for(const ServedScene& scene, bool rigid_body_
 
 /// Adds `more` to a response message ("a; b").
 void append_message(std::string& message, const std::string& more);
-
-/// This thread's workspace for scene slot `scene_index`, made ready for `scene`.
-Workspace& workspace_for(std::size_t scene_index, const ServedScene& scene);
 
 /// Frames that are not part of the robot model (tf2 in the node).
 class FrameLookup {

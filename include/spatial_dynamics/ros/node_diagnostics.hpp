@@ -1,0 +1,34 @@
+// The node's /diagnostics status, once a second: the SIMD backend, the joint-state pipeline's
+// rates, drops and latency, each service's calls and failures, the robot served and, as the
+// summary, what stops it serving (no model, a scene's error) or waits (incomplete joint states).
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+
+#include "spatial_dynamics/ros/joint_state_pipeline.hpp"
+#include "spatial_dynamics/ros/model_store.hpp"
+#include "spatial_dynamics/ros/service_endpoints.hpp"
+
+namespace spatial_dynamics {
+
+class NodeDiagnostics {
+ public:
+  NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
+                  const ServiceEndpoints& services, JointStatePipeline& joint_states);
+
+ private:
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  const ModelStore& store_;
+  const ServiceEndpoints& services_;
+  JointStatePipeline& joint_states_;
+  diagnostic_updater::Updater updater_;
+  ros::Timer timer_;
+};
+
+/// The build of the compiled algorithms this process runs (simd_backend.hpp), or why there is none
+/// (a bad SPATIAL_DYNAMICS_SIMD, which every algorithm call then reports as well).
+std::string simd_backend_or_error();
+
+}  // namespace spatial_dynamics

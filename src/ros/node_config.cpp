@@ -1,0 +1,144 @@
+#include "spatial_dynamics/ros/node_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <ros/console.h>
+#include <ros/node_handle.h>
+#include <ros/names.h>
+
+namespace spatial_dynamics {
+namespace {
+
+Eigen::Vector3d read_gravity(const ros::NodeHandle& private_nh) {
+  if (!private_nh.hasParam("gravity")) return Eigen::Vector3d(0.0, 0.0, -9.81);
+  XmlRpc::XmlRpcValue value;
+  private_nh.getParam("gravity", value);
+  const std::string culprit = "parameter " + private_nh.resolveName("gravity") + " must be a list of 3 finite numbers";
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeArray || value.size() != 3) throw std::runtime_error(culprit);
+  Eigen::Vector3d g;
+  for (int k = 0; k < 3; ++k) {
+    if (value[k].getType() == XmlRpc::XmlRpcValue::TypeDouble) g[k] = static_cast<double>(value[k]);
+    else if (value[k].getType() == XmlRpc::XmlRpcValue::TypeInt) g[k] = static_cast<int>(value[k]);
+    else throw std::runtime_error(culprit);
+    if (!std::isfinite(g[k])) throw std::runtime_error(culprit);
+  }
+  return g;
+}
+
+/// A list-of-strings parameter; throws naming it when it has another type.
+std::vector<std::string> read_names(const ros::NodeHandle& nh, const std::string& key) {
+  std::vector<std::string> names;
+  if (!nh.getParam(key, names))
+    throw std::runtime_error("parameter " + nh.resolveName(key) + " must be a list of names");
+  return names;
+}
+
+/// Reads `joints` or `root_link` + `tip_links` under `nh` into `config`.
+void read_scene(const ros::NodeHandle& nh, SceneConfig& config) {
+  config.parameter = nh.getNamespace();
+  try {
+    const bool by_joints = nh.hasParam("joints"), by_root = nh.hasParam("root_link") || nh.hasParam("tip_links");
+    if (by_joints && by_root)
+      throw std::runtime_error("give either " + nh.resolveName("joints") + " or " + nh.resolveName("root_link") +
+                               " with " + nh.resolveName("tip_links") + ", not both");
+    if (by_joints) {
+      config.reduced = true;
+      config.joints = read_names(nh, "joints");
+    } else if (by_root) {
+      config.reduced = true;
+      if (!nh.getParam("root_link", config.root_link))
+        throw std::runtime_error("parameter " + nh.resolveName("root_link") + " must be a link name");
+      config.tip_links = read_names(nh, "tip_links");
+    } else if (!config.name.empty()) {
+      throw std::runtime_error("scene '" + config.name + "' needs " + nh.resolveName("joints") + " or " +
+                               nh.resolveName("root_link") + " and " + nh.resolveName("tip_links"));
+    }
+  } catch (const std::exception& e) {
+    config.error = e.what();
+  }
+}
+
+/// The main scene, then each of ~scenes.
+std::vector<SceneConfig> read_scenes(const ros::NodeHandle& private_nh) {
+  std::vector<SceneConfig> configs(1);
+  read_scene(private_nh, configs[0]);
+  XmlRpc::XmlRpcValue scenes;
+  if (!private_nh.getParam("scenes", scenes)) return configs;
+  if (scenes.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    ROS_ERROR("dynamics: parameter %s must be a dictionary of scenes", private_nh.resolveName("scenes").c_str());
+    return configs;
+  }
+  for (auto it = scenes.begin(); it != scenes.end(); ++it) {
+    SceneConfig config;
+    config.name = it->first;
+    std::string why;
+    if (!ros::names::validate(config.name, why)) {
+      ROS_ERROR("dynamics: scene name '%s' is not a valid ROS name (%s); it is not served", config.name.c_str(), why.c_str());
+      continue;
+    }
+    read_scene(ros::NodeHandle(private_nh, "scenes/" + config.name), config);
+    configs.push_back(config);
+  }
+  return configs;
+}
+
+/// ~actuator_model and ~actuators (actuator_parameters.hpp); throws naming a bad ~actuator_model.
+ActuatorSettings read_actuator_settings(const ros::NodeHandle& private_nh) {
+  ActuatorSettings settings;
+  if (private_nh.hasParam("actuator_model")) {
+    std::string value;
+    if (!private_nh.getParam("actuator_model", value))
+      throw std::runtime_error("parameter " + private_nh.resolveName("actuator_model") +
+                               " must be 'rigid_body', 'urdf' or 'parameters'");
+    settings.model = parse_actuator_model(value, private_nh.resolveName("actuator_model"));
+  }
+  settings.actuators_parameter = private_nh.resolveName("actuators");
+  if (private_nh.hasParam("actuators")) private_nh.getParam("actuators", settings.actuators);
+  if (settings.model == ActuatorModel::RigidBody && settings.actuators.valid())
+    ROS_WARN("dynamics: %s is set but %s is 'rigid_body': the answers include no actuator terms",
+             settings.actuators_parameter.c_str(), private_nh.resolveName("actuator_model").c_str());
+  return settings;
+}
+
+/// The first of the start-up parameters that is out of range, or "".
+std::string check(const ros::NodeHandle& private_nh, const NodeConfig& config, const std::string& mimic_joints,
+                  const std::string& unknown_joints) {
+  const auto name = [&](const char* key) { return "parameter " + private_nh.resolveName(key); };
+  if (mimic_joints != "independent" && mimic_joints != "coupled")
+    return name("mimic_joints") + " must be 'independent' or 'coupled', not '" + mimic_joints + "'";
+  if (unknown_joints != "drop" && unknown_joints != "ignore")
+    return name("unknown_joints") + " must be 'drop' or 'ignore', not '" + unknown_joints + "'";
+  if (!(config.max_state_age > 0.0)) return name("max_state_age") + " must be > 0 (seconds)";
+  if (!(config.relock_tolerance >= 0.0)) return name("relock_tolerance") + " must be >= 0";
+  return "";
+}
+
+}  // namespace
+
+NodeConfig read_node_config(const ros::NodeHandle& private_nh) {
+  NodeConfig config;
+  private_nh.param("publish_computed_torques", config.publish_computed_torques, config.publish_computed_torques);
+  private_nh.param("relock_tolerance", config.relock_tolerance, config.relock_tolerance);
+  private_nh.param("max_state_age", config.max_state_age, config.max_state_age);
+  private_nh.param("inline_joint_states", config.inline_joint_states, config.inline_joint_states);
+  std::string mimic_joints = "independent", unknown_joints = "drop";
+  private_nh.param<std::string>("mimic_joints", mimic_joints, mimic_joints);
+  private_nh.param<std::string>("unknown_joints", unknown_joints, unknown_joints);
+  config.coupled_mimic_joints = mimic_joints == "coupled";
+  if (unknown_joints == "ignore") config.unknown_joints = JointStateCache::UnknownJoints::kIgnore;
+  config.scenes = read_scenes(private_nh);
+  config.error = check(private_nh, config, mimic_joints, unknown_joints);
+  return config;
+}
+
+RobotSource read_robot_source(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh) {
+  RobotSource source;
+  if (!nh.getParam("robot_description", source.urdf))
+    throw std::runtime_error("parameter " + nh.resolveName("robot_description") + " is not set");
+  source.gravity = read_gravity(private_nh);
+  source.actuators = read_actuator_settings(private_nh);
+  return source;
+}
+
+}  // namespace spatial_dynamics

@@ -1,0 +1,48 @@
+#include "spatial_dynamics/ros/node_diagnostics.hpp"
+
+#include "spatial_dynamics/simd_backend.hpp"
+
+namespace spatial_dynamics {
+
+std::string simd_backend_or_error() {
+  try {
+    return simd_backend();
+  } catch (const std::exception& e) {
+    return std::string("none: ") + e.what();
+  }
+}
+
+NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
+                                 const ServiceEndpoints& services, JointStatePipeline& joint_states)
+    : store_(store), services_(services), joint_states_(joint_states), updater_(nh, private_nh) {
+  updater_.setHardwareID("none");
+  updater_.add("Dynamics", this, &NodeDiagnostics::diagnose);
+  timer_ = ros::NodeHandle(private_nh).createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
+}
+
+void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  status.add("simd backend", simd_backend_or_error());
+  joint_states_.report(status);
+  services_.report(status);
+  std::string scene_errors;
+  for (std::size_t k = 0; k < store_.sceneCount(); ++k) {
+    const auto s = store_.scene(k);
+    if (s && !s->error.empty()) append_message(scene_errors, s->error);
+  }
+  const std::shared_ptr<const ServedRobot> robot = store_.robot();
+  if (!robot) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no robot model: " + store_.loadError());
+    return;
+  }
+  updater_.setHardwareID(robot->robot_name);
+  status.add("joints", robot->bare->nv);
+  status.add("actuator model", to_string(robot->actuator_model));
+  if (!scene_errors.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, scene_errors);
+  else if (!robot->cache->complete())
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "model loaded; waiting for joint_states of every joint");
+  else
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "model loaded; joint states complete");
+}
+
+}  // namespace spatial_dynamics
