@@ -12,7 +12,7 @@ packages=(
   liborocos-kdl-dev libkdl-parser-dev libmujoco-dev
   ros-message-generation python3-genpy
   libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
-  libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev
+  libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev libnodeletlib-dev libnodeletlib-tools
   python3-rospy python3-roslaunch python3-rosservice python3-rostopic python3-rosnode python3-rospkg
   rosbash rospack-tools
   python3-std-msgs python3-geometry-msgs python3-sensor-msgs python3-trajectory-msgs python3-std-srvs

@@ -5,8 +5,14 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <vector>
+
+#include <sensor_msgs/JointState.h>
 
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
@@ -44,6 +50,45 @@ Srv call(const std::string& name, Srv srv) {
   EXPECT_TRUE(ros::service::call(service(name), srv)) << "call of " << name << " did not go through";
   return srv;
 }
+
+/// Records the ~computed_torques messages of `topic`.
+class TorqueListener {
+ public:
+  explicit TorqueListener(ros::NodeHandle& nh, const std::string& topic = "/dynamics/computed_torques")
+      : sub_(nh.subscribe(topic, 100, &TorqueListener::on, this)) {}
+
+  /// Waits for the message stamped `stamp`.
+  bool waitFor(const ros::Time& stamp, sensor_msgs::JointState& out, double seconds = 5.0) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const bool found = cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
+      return std::any_of(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
+    });
+    if (found) out = *std::find_if(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
+    return found;
+  }
+  /// Waits for `count` messages; those received by then.
+  std::vector<sensor_msgs::JointState> waitForCount(std::size_t count, double seconds) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return received_.size() >= count; });
+    return received_;
+  }
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+  std::size_t count() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return received_.size();
+  }
+
+ private:
+  void on(const sensor_msgs::JointState& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    received_.push_back(msg);
+    cv_.notify_all();
+  }
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::vector<sensor_msgs::JointState> received_;
+};
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 

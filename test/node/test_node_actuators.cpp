@@ -274,11 +274,3 @@ TEST_F(NodeActuators, ABadParameterAtStartIsAnsweredNamingItUntilAGoodReload) {
   mm = call("mass_matrix", mm);
   EXPECT_TRUE(mm.response.success) << mm.response.message;
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_actuators");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

@@ -53,11 +53,3 @@ TEST(BadModel, ServicesAnswerWhyUntilAGoodModelIsReloaded) {
   ASSERT_TRUE(gravity.response.success) << gravity.response.message;
   EXPECT_LE(sd_test::relative_error(to_eigen(gravity.response.effort), sd::gravity_torques(model, data, q)), 1e-12);
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_bad_model");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

@@ -157,11 +157,3 @@ TEST_F(BadRequests, PositionOutsideLimitsIsAnsweredWithAWarning) {
                                              to_eigen(id.request.acceleration))),
             1e-12);
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_bad_requests");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

@@ -130,11 +130,3 @@ TEST(Concurrency, ClientsAndJointStatesAtOnce) {
               kClients, kCallsPerClient, seconds, kClients * kCallsPerClient / seconds, published,
               torques_received.load());
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_concurrency");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

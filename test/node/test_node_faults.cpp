@@ -169,11 +169,3 @@ TEST_F(Faults, GarbageRobotDescriptionThenReloadRecovers) {
   ASSERT_TRUE(res.success) << res.message;
   EXPECT_LE(sd_test::relative_error(to_eigen(res.effort), expected(q, qd)), 1e-12);
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_faults");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

@@ -233,11 +233,3 @@ TEST_F(Scenes, CoupledMimicJointsAnswerTheCoupledSystem) {
   ASSERT_TRUE(fd.response.success) << fd.response.message;
   EXPECT_LE(sd_test::relative_error(to_eigen(fd.response.acceleration), qdd), 1e-9);
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_scenes");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}

@@ -23,39 +23,6 @@ namespace {
 
 constexpr double kTolerance = 1e-12;
 
-/// Records ~computed_torques messages.
-class TorqueListener {
- public:
-  explicit TorqueListener(ros::NodeHandle& nh)
-      : sub_(nh.subscribe("/dynamics/computed_torques", 100, &TorqueListener::on, this)) {}
-
-  /// Waits for the message stamped `stamp`.
-  bool waitFor(const ros::Time& stamp, sensor_msgs::JointState& out, double seconds = 5.0) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    const bool found = cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
-      return std::any_of(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
-    });
-    if (found) out = *std::find_if(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
-    return found;
-  }
-  bool connected() const { return sub_.getNumPublishers() > 0; }
-  std::size_t count() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return received_.size();
-  }
-
- private:
-  void on(const sensor_msgs::JointState& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    received_.push_back(msg);
-    cv_.notify_all();
-  }
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::vector<sensor_msgs::JointState> received_;
-};
-
 class NodeServices : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
@@ -400,13 +367,4 @@ TEST_F(NodeServices, DiagnosticsShowTheSimdBackend) {
   const char* forced = std::getenv("SPATIAL_DYNAMICS_SIMD");
   if ((forced == nullptr || *forced == '\0') && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
     EXPECT_EQ(shown, "avx2_fma");
-}
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_services");
-  ros::NodeHandle nh;
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  return RUN_ALL_TESTS();
 }

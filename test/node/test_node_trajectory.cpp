@@ -357,11 +357,3 @@ TEST_F(NodeTrajectory, BadRequestsNameTheCulpritAndTheNodeKeepsServing) {
   still = call("inverse_dynamics_trajectory", still);
   EXPECT_TRUE(still.response.success) << still.response.message;
 }
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "test_node_trajectory");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  return RUN_ALL_TESTS();
-}
