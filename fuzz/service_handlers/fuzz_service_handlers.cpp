@@ -132,7 +132,7 @@ class RequestDecoder {
     return w;
   }
   std::vector<geometry_msgs::WrenchStamped> wrenches() {
-    std::vector<geometry_msgs::WrenchStamped> w(in_.ConsumeIntegralInRange<std::size_t>(0));
+    std::vector<geometry_msgs::WrenchStamped> w(in_.ConsumeIntegralInRange<std::size_t>(0, 3));
     for (auto& x : w) x = wrench();
     return w;
   }

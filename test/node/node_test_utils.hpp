@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <sensor_msgs/JointState.h>
+#include <std_srvs/Trigger.h>
 
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
@@ -89,6 +90,40 @@ class TorqueListener {
   std::condition_variable cv_;
   std::vector<sensor_msgs::JointState> received_;
 };
+
+/// ~reload, the call expected to go through.
+inline std_srvs::Trigger reload() {
+  std_srvs::Trigger trigger;
+  EXPECT_TRUE(ros::service::call(service("reload"), trigger)) << "call of reload did not go through";
+  return trigger;
+}
+
+/// The fixture of a checker that needs the node's services up.
+class ServedNodeTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
+  ros::NodeHandle nh;
+};
+
+/// ~inverse_dynamics at (q, q̇, q̈), every coordinate in the model's order.
+inline spatial_dynamics::InverseDynamics call_inverse_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                                               const Eigen::VectorXd& qdd) {
+  spatial_dynamics::InverseDynamics srv;
+  srv.request.position = to_std(q);
+  srv.request.velocity = to_std(qd);
+  srv.request.acceleration = to_std(qdd);
+  return call("inverse_dynamics", srv);
+}
+
+/// ~forward_dynamics at (q, q̇, τ), every coordinate in the model's order.
+inline spatial_dynamics::ForwardDynamics call_forward_dynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                                               const Eigen::VectorXd& tau) {
+  spatial_dynamics::ForwardDynamics srv;
+  srv.request.position = to_std(q);
+  srv.request.velocity = to_std(qd);
+  srv.request.effort = to_std(tau);
+  return call("forward_dynamics", srv);
+}
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 

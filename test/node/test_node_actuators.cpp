@@ -53,17 +53,7 @@ sd::Model<double> rigid_model() {
   return model;
 }
 
-std_srvs::Trigger reload() {
-  std_srvs::Trigger trigger;
-  EXPECT_TRUE(ros::service::call(service("reload"), trigger));
-  return trigger;
-}
-
-class NodeActuators : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
-  ros::NodeHandle nh;
-};
+class NodeActuators : public ServedNodeTest {};
 
 }  // namespace
 
@@ -226,11 +216,7 @@ TEST_F(NodeActuators, EachBadParameterIsRefusedNamingItAndThePreviousModelIsServ
     else ros::param::del(bad.parameter);
     if (bad.parameter == "/dynamics/actuators/no_such_joint/armature") ros::param::del("/dynamics/actuators/no_such_joint");
     // The previous model, with its terms, is still served.
-    spatial_dynamics::InverseDynamics id;
-    id.request.position = to_std(q);
-    id.request.velocity = to_std(qd);
-    id.request.acceleration = to_std(qdd);
-    id = call("inverse_dynamics", id);
+    spatial_dynamics::InverseDynamics id = call_inverse_dynamics(q, qd, qdd);
     ASSERT_TRUE(id.response.success) << id.response.message;
     EXPECT_LE(sd_test::relative_error(to_eigen(id.response.effort), sd::inverse_dynamics_actuated(model, data, q, qd, qdd)),
               kTolerance);

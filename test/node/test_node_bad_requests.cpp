@@ -15,9 +15,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-class BadRequests : public ::testing::Test {
+class BadRequests : public ServedNodeTest {
  protected:
-  static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
   void SetUp() override {
     model = model_from_parameter();
     for (int i = 1; i < model.nbodies(); ++i) names.push_back(model.joint_names[i]);

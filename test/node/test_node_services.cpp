@@ -23,9 +23,8 @@ namespace {
 
 constexpr double kTolerance = 1e-12;
 
-class NodeServices : public ::testing::Test {
+class NodeServices : public ServedNodeTest {
  protected:
-  static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
 
   void SetUp() override {
     model = model_from_parameter();
@@ -56,7 +55,6 @@ class NodeServices : public ::testing::Test {
     return torques;
   }
 
-  ros::NodeHandle nh;
   TorqueListener listener{nh};
   ros::Publisher joint_states;
   sd::Model<double> model;
@@ -74,21 +72,13 @@ TEST_F(NodeServices, InverseForwardDynamicsAndMassMatrixMatchTheLibrary) {
     const VectorXd qd = sd_test::random_vector(model.nv, rng);
     const VectorXd qdd = sd_test::random_vector(model.nv, rng);
 
-    spatial_dynamics::InverseDynamics id;
-    id.request.position = to_std(q);
-    id.request.velocity = to_std(qd);
-    id.request.acceleration = to_std(qdd);
-    id = call("inverse_dynamics", id);
+    spatial_dynamics::InverseDynamics id = call_inverse_dynamics(q, qd, qdd);
     ASSERT_TRUE(id.response.success) << id.response.message;
     EXPECT_EQ(id.response.name, names);
     const VectorXd tau = sd::rnea(model, data, q, qd, qdd);
     EXPECT_LE(sd_test::relative_error(to_eigen(id.response.effort), tau), kTolerance);
 
-    spatial_dynamics::ForwardDynamics fd;
-    fd.request.position = to_std(q);
-    fd.request.velocity = to_std(qd);
-    fd.request.effort = to_std(tau);
-    fd = call("forward_dynamics", fd);
+    spatial_dynamics::ForwardDynamics fd = call_forward_dynamics(q, qd, tau);
     ASSERT_TRUE(fd.response.success) << fd.response.message;
     EXPECT_LE(sd_test::relative_error(to_eigen(fd.response.acceleration), VectorXd(sd::aba(model, data, q, qd, tau))),
               kTolerance);

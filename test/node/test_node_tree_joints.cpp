@@ -44,15 +44,10 @@ std::string ur5_with_floating_object() {
 
 std_srvs::Trigger reload_with(const std::string& urdf) {
   ros::param::set("robot_description", urdf);
-  std_srvs::Trigger reload;
-  EXPECT_TRUE(ros::service::call(service("reload"), reload));
-  return reload;
+  return reload();
 }
 
-class NodeTreeJoints : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { ASSERT_TRUE(wait_for_services()) << "the node's services did not appear"; }
-};
+class NodeTreeJoints : public ServedNodeTest {};
 
 }  // namespace
 
@@ -83,11 +78,7 @@ TEST_F(NodeTreeJoints, APlanarJointIsServedByItsCoordinatesNames) {
     const VectorXd tau = sd::rnea(model, data, q, qd, qdd);
     EXPECT_LE(sd_test::relative_error(to_eigen(id.response.effort), tau), kTolerance);
 
-    spatial_dynamics::ForwardDynamics fd;
-    fd.request.position = to_std(q);
-    fd.request.velocity = to_std(qd);
-    fd.request.effort = to_std(tau);
-    fd = call("forward_dynamics", fd);
+    spatial_dynamics::ForwardDynamics fd = call_forward_dynamics(q, qd, tau);
     ASSERT_TRUE(fd.response.success) << fd.response.message;
     EXPECT_LE(sd_test::relative_error(to_eigen(fd.response.acceleration), qdd), 1e-10);  // FD(ID(q̈)) = q̈
 
