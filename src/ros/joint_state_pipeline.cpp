@@ -57,7 +57,11 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
     if (!served || !served->model || served->robot != robot) continue;
     std::string moved;  // locked joints follow joint_states
     served = store_.followLockedJoints(k, served, robot, moved);
-    if (!moved.empty()) ROS_DEBUG("dynamics: %s; rebuilding scene %zu", moved.c_str(), k);
+    if (!moved.empty()) {
+      const std::string& name = store_.config().scenes[k].name;
+      const std::string scene = name.empty() ? "the main scene" : "scene '" + name + "'";
+      ROS_DEBUG("dynamics: %s; rebuilding %s", moved.c_str(), scene.c_str());
+    }
     if (!store_.config().publish_computed_torques || !served->model) continue;
     try {
       sensor_msgs::JointState out;
