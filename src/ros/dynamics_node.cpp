@@ -8,22 +8,20 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
     : nh_(nh),
       private_nh_(private_nh),
       tf_listener_(tf_buffer_),
+      read_source_([this] { return read_robot_source(nh_, private_nh_); }),
       store_(read_node_config(private_nh_)),
-      loaded_at_start_up_(loadAtStartUp()),
-      services_(private_nh_, store_, tf_frames_, [this] { return read_robot_source(nh_, private_nh_); }),
+      services_(private_nh_, loadedAtStartUp(), tf_frames_, read_source_),
       joint_states_(nh_, private_nh_, store_),
       diagnostics_(nh_, private_nh_, store_, services_, joint_states_) {}
 
-bool DynamicsNode::loadAtStartUp() {
+ModelStore& DynamicsNode::loadedAtStartUp() {
   ROS_INFO("dynamics: simd backend %s", simd_backend_or_error().c_str());
-  bool loaded = false;
   try {
     if (!store_.config().error.empty()) throw std::runtime_error(store_.config().error);
-    store_.load([this] { return read_robot_source(nh_, private_nh_); });
+    store_.load(read_source_);
     const std::shared_ptr<const ServedRobot> robot = store_.robot();
     ROS_INFO("dynamics: serving '%s' with %d joints, actuator model %s", robot->robot_name.c_str(), robot->bare->nv,
              to_string(robot->actuator_model));
-    loaded = true;
   } catch (const std::exception& e) {
     store_.setLoadError(e.what());
     ROS_ERROR("dynamics: no robot model: %s", e.what());
@@ -36,7 +34,7 @@ bool DynamicsNode::loadAtStartUp() {
     else if (scene && !scene->error.empty())
       ROS_ERROR("dynamics: %s", scene->error.c_str());
   }
-  return loaded;
+  return store_;
 }
 
 }  // namespace spatial_dynamics

@@ -9,8 +9,7 @@ namespace spatial_dynamics {
 JointStatePipeline::JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store)
     : store_(store), reported_time_(ros::WallTime::now()) {
   for (const SceneConfig& scene : store_.config().scenes)
-    computed_torques_.push_back(private_nh.advertise<sensor_msgs::JointState>(
-        scene.name.empty() ? "computed_torques" : scene.name + "/computed_torques", 1000));
+    computed_torques_.push_back(private_nh.advertise<sensor_msgs::JointState>(scene.resolve("computed_torques"), 1000));
   if (store_.config().inline_joint_states)
     nh.setCallbackQueue(&queue_);
   else

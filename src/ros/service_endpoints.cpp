@@ -26,8 +26,7 @@ ServiceEndpoints::ServiceEndpoints(ros::NodeHandle private_nh, ModelStore& store
 
 template <class Service, class Compute>
 void ServiceEndpoints::advertise(std::size_t k, const std::string& name, Compute compute) {
-  const std::string& scene = store_.config().scenes[k].name;
-  Counters& counters = counters_.emplace_back(scene.empty() ? name : scene + "/" + name);
+  Counters& counters = counters_.emplace_back(store_.config().scenes[k].resolve(name));
   services_.push_back(private_nh_.advertiseService<typename Service::Request, typename Service::Response>(
       counters.service, [this, k, &counters, compute](auto& req, auto& res) {
         return serve(k, counters, res, [&](const ServedScene& s, Workspace& ws) { compute(s, ws, req, res); });

@@ -27,16 +27,16 @@ class DynamicsNode {
   DynamicsNode& operator=(const DynamicsNode&) = delete;
 
  private:
-  /// Loads the robot before the services and joint_states start, or records and logs why there
-  /// is none; logs each scene that cannot be served. Whether a model loaded.
-  bool loadAtStartUp();
+  /// The store with the robot loaded, or with why there is none recorded and logged; each scene
+  /// that cannot be served logged. Called before the services and joint_states start.
+  ModelStore& loadedAtStartUp();
 
   ros::NodeHandle nh_, private_nh_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   TfFrames tf_frames_{tf_buffer_};
+  const ModelStore::SourceReader read_source_;  // robot_description, ~gravity, ~actuator_model, ~actuators
   ModelStore store_;
-  bool loaded_at_start_up_;
   // Destroyed in reverse: diagnostics, then joint_states (unsubscribed before the store goes).
   ServiceEndpoints services_;
   JointStatePipeline joint_states_;

@@ -26,6 +26,9 @@ struct SceneConfig {
   std::string root_link;            // root link and tip links
   std::vector<std::string> tip_links;
   std::string error;                // a configuration error, reported by the scene's services
+
+  /// A service or topic of this scene under the node: `name` for the main scene, else <scene>/name.
+  std::string resolve(const std::string& topic) const { return name.empty() ? topic : name + "/" + topic; }
 };
 
 struct NodeConfig {
