@@ -90,7 +90,7 @@ StateQ random_state(const sd::Model<double>& model, std::mt19937& rng, bool unit
 sd::Model<Quad> with_exact_rotations(const sd::Model<double>& model_d) {
   sd::Model<Quad> model = model_d.cast<Quad>();
   for (int i = 1; i < model.nbodies(); ++i) {
-    model.X_tree[i].E = Eigen::Quaternion<Quad>(model.X_tree[i].E).normalized().toRotationMatrix();
+    model.X_tree[i].E = Eigen::Quaternion<Quad>(model.X_tree[i].E.eigen()).normalized().toRotationMatrix();
     model.joints[i].axis.normalize();
   }
   model.finalize();  // the joint types take the axes again

@@ -268,7 +268,7 @@ TEST(JointSinesAndCosines, EveryRevoluteJointAgainstTheCLibrary) {
                   4.5e-16) << model.joint_names[i] << " at " << angle;
         sd::PluckerTransform<double> X;
         sd::joint_up_transform(model, i, &angle, X);
-        EXPECT_LE((X.E - data.X_up[i].E).cwiseAbs().maxCoeff(), 1e-15) << model.joint_names[i];
+        EXPECT_LE((X.E - data.X_up[i].E).eigen().cwiseAbs().maxCoeff(), 1e-15) << model.joint_names[i];
         EXPECT_EQ(X.r, data.X_up[i].r) << model.joint_names[i];
       }
       EXPECT_EQ(revolute, static_cast<int>(data.angle_bodies.size()));  // no planar joints here

@@ -105,7 +105,7 @@ TEST_P(FloatingBaseRobot, FreeFallAcceleratesEveryBodyWithGravity) {
     const VectorXd q = sd_test::random_configuration(model, rng);
     const VectorXd qdd = sd::aba(model, data, q, VectorXd::Zero(model.nv), VectorXd::Zero(model.nv));
     sd::forward_kinematics(model, data, q);
-    const Eigen::Vector3d g_in_root = data.X_base[1].E * model.gravity;
+    const Eigen::Vector3d g_in_root = data.X_base[1].E.eigen() * model.gravity;
     EXPECT_LE(qdd.head<3>().norm(), 1e-12);
     EXPECT_LE((qdd.segment<3>(3) - g_in_root).norm(), 1e-12);
     EXPECT_LE(qdd.tail(model.nv - 6).norm(), 1e-11) << GetParam();

@@ -121,11 +121,9 @@ TEST(JointTypes, AgainstTheirTransformAndDenseSubspace) {
         const sd::MotionVector<Quad> v(random_vector(6, rng));
         const sd::Vector6<Quad> expected = cJ + sd::motion_cross_matrix(v) * vJ;
         EXPECT_LE(max_abs(joint.velocity_product(v, qd.data(), s, c).toVector() - expected), 1e-20) << what;
-        // Sᵀ f and I S.
+        // Sᵀ f.
         const sd::ForceVector<Quad> f(random_vector(6, rng));
         EXPECT_LE(max_abs(joint.project(f, s, c) - S.transpose() * f.toVector()), 1e-30) << what;
-        const sd::Matrix6<Quad> I = sd::Matrix6<Quad>(random_vector(36, rng).data());
-        EXPECT_LE(max_abs(joint.inertia_times(I, s, c) - I * S), 1e-30) << what;
       });
     }
   }

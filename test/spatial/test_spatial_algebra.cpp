@@ -2,6 +2,7 @@
 // 3-D vector formulas computed independently in the tests.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "spatial_dynamics/spatial.hpp"
@@ -60,8 +61,8 @@ PluckerTransform<double> screw_motion_base_to_body(const MotionVector<double>& v
   const Vector3d& w = v.angular;
   const double theta = w.norm() * t;
   const Matrix3d R = Eigen::AngleAxisd(theta, w.normalized()).toRotationMatrix();
-  const Vector3d d = (Matrix3d::Identity() - R) * w.cross(v.linear) / w.squaredNorm() +
-                     w * w.dot(v.linear) / w.squaredNorm() * t;
+  const Vector3d d = (Matrix3d::Identity() - R) * w.cross(v.linear.eigen()) / w.squaredNorm() +
+                     w * w.dot(v.linear.eigen()) / w.squaredNorm() * t;
   return PluckerTransform<double>::FromPose(R, d);  // ^BX_0 from the pose of B in 0
 }
 
@@ -90,7 +91,7 @@ TEST(SpatialAlgebra, TwoBodyExampleThreeDAgreesWithSpatial) {
     const Matrix3d Jc = J1 + parallel_axis(m1, c1 - c) + J2 + parallel_axis(m2, c2 - c);
     const Vector3d& w = v.angular;
     const Vector3d c_dot = v.linear + w.cross(c);                           // velocity of the centre of mass
-    const Vector3d n_c = f.angular - c.cross(f.linear);                      // moment about the centre of mass
+    const Vector3d n_c = f.angular.eigen() - c.cross(f.linear.eigen());                      // moment about the centre of mass
     const Vector3d w_dot = Jc.ldlt().solve(n_c - w.cross(Jc * w));           // Euler
     const Vector3d c_ddot = f.linear / m;                                    // Newton
     const Vector3d a_O = c_ddot - w_dot.cross(c) - w.cross(c_dot);           // spatial linear acceleration at O
@@ -176,7 +177,7 @@ TEST(SpatialAlgebra, CrossProducts) {
       e[k] = 1;
       const MotionVector<double> ek(e);
       Vector6d expected;
-      expected << v.angular.cross(ek.angular), v.angular.cross(ek.linear) + v.linear.cross(ek.angular);
+      expected << v.angular.cross(ek.angular).eigen(), (v.angular.cross(ek.linear) + v.linear.cross(ek.angular)).eigen();
       EXPECT_LE((sd::motion_cross_matrix(v).col(k) - expected).norm(), 1e-15);
     }
   }
@@ -201,10 +202,10 @@ TEST(SpatialAlgebra, RigidInertiaMatchesEquation25AndThreeDFormulas) {
     const Vector3d c_dot = v.linear + v.angular.cross(c);
     // Momentum (eq. 23): angular momentum about O = Ī_c ω + c × m ċ; linear = m ċ.
     const ForceVector<double> h = sd::momentum(I, v);
-    EXPECT_LE((h.angular - (Jc * v.angular + c.cross(m * c_dot))).norm(), 1e-14);
+    EXPECT_LE((h.angular.eigen() - (Jc * v.angular.eigen() + c.cross(m * c_dot))).norm(), 1e-14);
     EXPECT_LE((h.linear - m * c_dot).norm(), 1e-14);
     // Kinetic energy (eq. 28) = ½ m |ċ|² + ½ ωᵀ Ī_c ω.
-    const double T = 0.5 * m * c_dot.squaredNorm() + 0.5 * v.angular.dot(Jc * v.angular);
+    const double T = 0.5 * m * c_dot.squaredNorm() + 0.5 * v.angular.eigen().dot(Jc * v.angular.eigen());
     EXPECT_NEAR(sd::kinetic_energy(I, v), T, 1e-14 * T);
     // Gravity: f_g = I a_g = (c × m g ; m g).
     const Vector3d g(0, 0, -9.81);
@@ -242,7 +243,7 @@ TEST(SpatialAlgebra, InertiaTransformMatchesEquation26) {  // I_B = X* I_A X^-1
     EXPECT_LE(rel(X.applyInverse(X.apply(I)).toMatrix(), I.toMatrix()), 1e-13);
     // The accumulating form: out += Xᵀ I X, onto another body's inertia.
     RigidInertia<double> base = r.inertia();
-    base.rotational_inertia = (0.5 * (base.rotational_inertia + base.rotational_inertia.transpose())).eval();
+    base.rotational_inertia = (base.rotational_inertia + base.rotational_inertia.transpose()) * 0.5;
     RigidInertia<double> sum = base;
     X.applyInverseAdd(I, sum);
     EXPECT_LE(rel(sum.toMatrix(), base.toMatrix() + X.toMotionMatrix().transpose() * I.toMatrix() * X.toMotionMatrix()),
@@ -255,7 +256,7 @@ TEST(SpatialAlgebra, InertiaTransformMatchesEquation26) {  // I_B = X* I_A X^-1
     Matrix6d A = Matrix6d::Random();
     A = (A * A.transpose()).eval();
     const sd::ArticulatedInertia<double> IA(A);
-    EXPECT_LE(rel(X.applyInverse(IA).matrix, X.toMotionMatrix().transpose() * A * X.toMotionMatrix()), 1e-13);
+    EXPECT_LE(rel(X.applyInverse(IA).matrix(), X.toMotionMatrix().transpose() * A * X.toMotionMatrix()), 1e-13);
     const MotionVector<double> v = r.motion();
     EXPECT_LE(rel(vec(IA * v), A * vec(v)), 1e-14);
   }
@@ -304,4 +305,37 @@ TEST(SpatialAlgebra, WorksInOtherScalarTypes) {
   const PluckerTransform<long double> Xl = X.cast<long double>();
   const Eigen::Matrix<long double, 6, 1> in_long = Xl.apply(m.cast<long double>()).toVector();
   EXPECT_LE(sd_test::relative_error(in_long.cast<double>(), vec(X.apply(m))), 1e-15);
+}
+
+// The 3-vector and 3×3 matrix the spatial types are made of, against Eigen's operations on the
+// same operands (the AVX2+FMA build's fused products may round differently: 4 ε relative).
+TEST(Vec3AndMat3, OperationsMatchEigen) {
+  Random r;
+  const auto close = [](const Vector3d& got, const Vector3d& want) {
+    return (got - want).norm() <= 4 * std::numeric_limits<double>::epsilon() * (1 + want.norm());
+  };
+  for (int t = 0; t < kTrials; ++t) {
+    const Vector3d a = r.vec3(), b = r.vec3();
+    const Matrix3d A = r.rotation() * 3.0 + Matrix3d::Constant(r.scalar()), B = r.rotation();
+    const double k = r.scalar();
+    const sd::Vec3<double> va(a), vb(b);
+    const sd::Mat3<double> mA(A), mB(B);
+    EXPECT_TRUE(va.eigen() == a && mA.eigen() == A);  // conversions are exact
+    EXPECT_TRUE(close(va + vb, a + b) && close(va - vb, a - b) && close(-va, -a) && close(va * k, a * k));
+    EXPECT_TRUE(close(sd::cross(va, vb), a.cross(b)) && close(va.cross(vb), a.cross(b)));
+    EXPECT_NEAR(sd::dot(va, vb), a.dot(b), 4e-16);
+    EXPECT_TRUE(close(mA * vb, A * b) && close(mA.transposeTimes(vb), A.transpose() * b));
+    EXPECT_LE(((mA * mB).eigen() - A * B).norm(), 1e-14);
+    EXPECT_LE(((mA.transposeTimes(mB)).eigen() - A.transpose() * B).norm(), 1e-14);
+    EXPECT_TRUE(mA.transpose().eigen() == A.transpose());
+    EXPECT_TRUE(sd::Mat3<double>::Skew(va).eigen() == sd::skew(a));
+    for (int c = 0; c < 3; ++c)
+      for (int row = 0; row < 3; ++row) EXPECT_EQ(mA(row, c), A(row, c));
+    // The pad lane of a double Vec3 stays zero through the operations (it never reaches x, y, z).
+    const sd::Vec3<double> combined = sd::cross(va, vb) + mA * va - vb * k;
+    EXPECT_EQ(combined.lanes.x[3], 0.0);
+  }
+  sd::Vec3<double> written;
+  written[1] = 2.5;  // a coordinate written through a reference, read back by a packed operation
+  EXPECT_TRUE((written + sd::Vec3<double>::UnitX()).eigen() == Vector3d(1.0, 2.5, 0.0));
 }

@@ -28,9 +28,8 @@
 
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
-#include "spatial_dynamics/algorithms/wide_residual_form.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
-#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
@@ -62,9 +61,6 @@ struct RefinementWorkspace {
   std::vector<MotionVector<S>> a;
   std::vector<Vector6<S>> u;
   VectorX<S> residual, delta;
-  // The residual RNEA on the double model (wide_residual_form.hpp), where it takes the model.
-  WideResidualWork wide_work;
-  bool wide_form_takes_model = false;
   int iterations = 0;  // corrections applied by the last call
   S first_correction = S(0);  // ‖δ₀‖/‖x‖ of the last call: the unrefined result's relative error
   S effort_norm = S(0);       // ‖τ‖ of the last call
@@ -83,9 +79,7 @@ struct RefinementWorkspace {
         a(model.nbodies(), MotionVector<S>::Zero()),
         u(model.nbodies(), Vector6<S>::Zero()),
         residual(VectorX<S>::Zero(model.nv)),
-        delta(VectorX<S>::Zero(model.nv)),
-        wide_work(model),
-        wide_form_takes_model(wide_residual_form_takes(model)) {}
+        delta(VectorX<S>::Zero(model.nv)) {}
 };
 
 namespace detail {
@@ -106,25 +100,11 @@ F widen(const W& x) {
   else return F(x);
 }
 
-/// ID(q, q̇, q̈) in W (RBDA Table 5.1) at the workspace's q, under gravity or none: for double
-/// with double-double residuals, on the double model where wide_residual_form.hpp takes it; else
-/// the RNEA on the wide model.
+/// ID(q, q̇, q̈) in W (RBDA Table 5.1) at the workspace's q, under gravity or none: the RNEA on
+/// the wide model.
 template <class S, class W>
 const VectorX<W>& wide_inverse_dynamics(const Model<S>& model, RefinementWorkspace<S, W>& ws, const VectorX<W>& qd,
                                         const VectorX<W>& qdd, bool with_gravity) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value && std::is_same<W, DoubleDouble>::value) {
-    if (ws.wide_form_takes_model) {
-      auto& bodies = ws.wide_work.rnea;
-      for (int i = 1; i < model.nbodies(); ++i)
-        if (model.joints[i].type == JointType::Revolute) sin_cos(ws.q_wide[model.joints[i].idx_q], bodies[i].sin, bodies[i].cos);
-      const Vector3<S> gravity = with_gravity ? model.gravity : Vector3<S>(Vector3<S>::Zero());
-      rnea_passes<vec3::WideResidualForm>(model, ws.wide_work, ws.q_wide.data(), qd.data(), qdd.data(),
-                                          static_cast<const ForceVector<S>*>(nullptr), gravity, ws.data_wide.tau.data());
-      return ws.data_wide.tau;
-    }
-  }
-#endif
   static_cast<void>(model);
   const Vector3<W> gravity = with_gravity ? ws.model_wide.gravity : Vector3<W>(Vector3<W>::Zero());
   return rnea_impl(ws.model_wide, ws.data_wide, ws.q_wide, qd, qdd, static_cast<const ForceVector<W>*>(nullptr), gravity);

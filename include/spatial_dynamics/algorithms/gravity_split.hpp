@@ -19,7 +19,7 @@
 #include <type_traits>
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
-#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/number/wide_vector3.hpp"
@@ -46,50 +46,37 @@ SD_INLINE void gravity_split_start(const Model<S>& model, Data<S>& data) {
   Wide::store(Wide::from(model.gravity), data.gravity_split[0].gravity);
 }
 
-/// Body i on the way out: g_i = E_i g_λ and its own gravity force (g_i × h_i ; −m_i g_i), where
-/// the sum over its subtree starts. E_i is the rotation the outward pass holds (a vec3::Form's),
-/// used from its registers rather than reloaded from data.X_up[i] (where it was just stored).
-template <class S, class Rotation>
-SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i, const Rotation& E) {
+/// Body i on the way out: g_i = E_i g_λ (E_i of data.X_up[i]) and its own gravity force
+/// (g_i × h_i ; −m_i g_i), where the sum over its subtree starts.
+template <class S>
+SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i) {
   using Wide = wide3::Form<S>;
   auto& body = data.gravity_split[i];
   const typename Wide::Vector g =
-      Wide::rotate(body_up_rotation(data, i), Wide::rotation_of(E), Wide::load(data.gravity_split[model.parent[i]].gravity));
+      Wide::rotation(data.X_up[i].E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
   Wide::store(g, body.gravity);
   Wide::store(wide3::cross(g, model.inertia[i].first_moment), body.moment);
   Wide::store(wide3::scale(S(-model.inertia[i].mass), g), body.force);
 }
 
 /// Body i on the way in, its subtree's force complete: τ − Sᵀ f for its joint into
-/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f), given Eᵀ
-/// by its columns (Et, a vec3::Form's) and its structure (about_Et).
-template <class S, class TransposedRotation>
-SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau,
-                                    const RotationAboutAxis<S>& about_Et, const TransposedRotation& Et) {
+/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12).
+template <class S>
+SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau) {
   using W = WiderScalar<S>;
   using Wide = wide3::Form<S>;
   const Joint<S>& j = model.joints[i];
   const auto& body = data.gravity_split[i];
   const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
-  const int v = j.idx_v;
-  S* out = data.tau_less_gravity.data();
-  if (j.nv == 1) {  // the axis' dot product with n or f on the wide vector (a lane for a coordinate axis)
-    const typename Wide::Vector& moved = one_dof_rotates(j) ? n : f;
-    const W projected = j.axis_kind == AxisKind::General ? Wide::dot(j.axis, moved)
-                                                         : Wide::lane(moved, static_cast<int>(j.axis_kind));
-    out[v] = S(W(tau[v]) - projected);
-  } else {
-    W projected[6];  // Sᵀ f, in W
-    W n_lanes[3], f_lanes[3];
-    Wide::lanes(n, n_lanes);
-    Wide::lanes(f, f_lanes);
-    joint_project(j, data.joint_sin[i], data.joint_cos[i], n_lanes, f_lanes, projected);
-    for (int k = 0; k < j.nv; ++k) out[v + k] = S(W(tau[v + k]) - projected[k]);
-  }
+  W projected[6], n_lanes[3], f_lanes[3];  // Sᵀ f, in W
+  Wide::lanes(n, n_lanes);
+  Wide::lanes(f, f_lanes);
+  joint_project(j, data.joint_sin[i], data.joint_cos[i], n_lanes, f_lanes, projected);
+  for (int k = 0; k < j.nv; ++k) data.tau_less_gravity[j.idx_v + k] = S(W(tau[j.idx_v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const typename Wide::Vector Et_n = Wide::rotate(about_Et, Wide::rotation_of(Et), n),
-                              Et_f = Wide::rotate(about_Et, Wide::rotation_of(Et), f);
+  const auto Et = Wide::transposed_rotation(data.X_up[i].E);
+  const typename Wide::Vector Et_n = Et * n, Et_f = Et * f;
   auto& parent = data.gravity_split[lambda];
   Wide::store(Wide::load(parent.moment) + (Et_n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
   Wide::store(Wide::load(parent.force) + Et_f, parent.force);

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
-#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
 #include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"

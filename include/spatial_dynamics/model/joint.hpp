@@ -52,6 +52,7 @@ struct Joint {
   // A planar joint's in-plane axes e₁ and e₂ = axis × e₁ (joint frame); zero for other types.
   Vector3<S> plane_x = Vector3<S>::Zero();
   Vector3<S> plane_y = Vector3<S>::Zero();
+  S pitch{0};  // a screw joint's translation along `axis` per radian of rotation (0 for the others)
   int idx_q = 0;                          // first coordinate in q
   int idx_v = 0;                          // first coordinate in q̇, q̈, τ
   int nq = 1;
@@ -65,7 +66,7 @@ struct Joint {
   /// Model::finalize() calls for every joint.
   JointModel<S> model;
 
-  void update_model() { model = make_joint_model(type, axis, plane_x, plane_y); }
+  void update_model() { model = make_joint_model(type, axis, plane_x, plane_y, pitch); }
 
   template <class T>
   Joint<T> cast() const {
@@ -75,6 +76,7 @@ struct Joint {
     j.axis = axis.template cast<T>();
     j.plane_x = plane_x.template cast<T>();
     j.plane_y = plane_y.template cast<T>();
+    j.pitch = T(pitch);
     j.idx_q = idx_q;
     j.idx_v = idx_v;
     j.nq = nq;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "spatial_dynamics/algorithms/joint_kernels.hpp"
+#include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/reduction/scene.hpp"
 

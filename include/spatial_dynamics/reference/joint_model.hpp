@@ -125,7 +125,7 @@ VecX<S> joint_configuration(const Joint<S>& j, const VectorArg<S>& q) {
 template <class S>
 Mat6<S> body_inertia(const Model<S>& model, int i) {
   const RigidInertia<S>& I = model.inertia[i];
-  return rigid_inertia(I.mass, I.first_moment, I.rotational_inertia);
+  return rigid_inertia(I.mass, I.first_moment.eigen(), I.rotational_inertia.eigen());
 }
 
 /// ^iX_λ(i) = X_J(q_i) X_T(i) of every body (entry 0 unused), X_T = model.X_tree as a 6×6 matrix.
@@ -135,7 +135,7 @@ std::vector<Mat6<S>> up_transforms(const Model<S>& model, const VectorArg<S>& q)
   std::vector<Mat6<S>> X_up(model.nbodies(), Mat6<S>::Identity());
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& j = model.joints[i];
-    X_up[i] = joint_transform(j, joint_configuration(j, q)) * plucker(model.X_tree[i].E, model.X_tree[i].r);
+    X_up[i] = joint_transform(j, joint_configuration(j, q)) * plucker(model.X_tree[i].E.eigen(), model.X_tree[i].r.eigen());
   }
   return X_up;
 }

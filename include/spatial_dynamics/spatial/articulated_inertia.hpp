@@ -1,53 +1,60 @@
-// Articulated-body inertia: a general symmetric 6×6 matrix [A B; Bᵀ C] (RBDA §7.2), used by the
-// ABA. Rigid inertia is the special case B = h×, C = m1.
+// Articulated-body inertia: a symmetric 6×6 matrix [A B; Bᵀ C] (RBDA §7.2), used by the ABA,
+// held as its blocks (A and C symmetric). Rigid inertia is the special case A = Ī_O, B = h×, C = m1.
 #pragma once
-
-#include <type_traits>
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
+#include "spatial_dynamics/spatial/mat3.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/number/packed3_articulated_inertia.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
 namespace spatial_dynamics {
 
 template <class S>
 struct ArticulatedInertia {
-  Matrix6<S> matrix = Matrix6<S>::Zero();
+  Mat3<S> A, B, C;
 
   ArticulatedInertia() = default;
-  explicit ArticulatedInertia(const Matrix6<S>& m) : matrix(m) {}
-  explicit ArticulatedInertia(const RigidInertia<S>& rigid) { assign(rigid); }
+  ArticulatedInertia(const Mat3<S>& a, const Mat3<S>& b, const Mat3<S>& c) : A(a), B(b), C(c) {}
+  explicit ArticulatedInertia(const Matrix6<S>& m)
+      : A(Matrix3<S>(m.template topLeftCorner<3, 3>())),
+        B(Matrix3<S>(m.template topRightCorner<3, 3>())),
+        C(Matrix3<S>(m.template bottomRightCorner<3, 3>())) {}
+  /// [Ī_O h×; −h× m1] (eq. 25)
+  SD_INLINE explicit ArticulatedInertia(const RigidInertia<S>& rigid)
+      : A(rigid.rotational_inertia),
+        B(Mat3<S>::Skew(rigid.first_moment)),
+        C(Mat3<S>::Diagonal(rigid.mass, rigid.mass, rigid.mass)) {}
 
-  SD_INLINE void assign(const RigidInertia<S>& rigid) {
-#ifdef SD_PACKED3
-    if constexpr (std::is_same<S, double>::value) {
-      packed3::store_rigid(rigid.mass, rigid.first_moment, rigid.rotational_inertia, matrix);
-      return;
-    }
-#endif
-    const Matrix3<S> hx = skew(rigid.first_moment);
-    matrix.template topLeftCorner<3, 3>() = rigid.rotational_inertia;
-    matrix.template topRightCorner<3, 3>() = hx;
-    matrix.template bottomLeftCorner<3, 3>() = -hx;
-    matrix.template bottomRightCorner<3, 3>() = rigid.mass * Matrix3<S>::Identity();
+  /// The 6×6 matrix.
+  Matrix6<S> matrix() const {
+    Matrix6<S> m;
+    m.template topLeftCorner<3, 3>() = A.eigen();
+    m.template topRightCorner<3, 3>() = B.eigen();
+    m.template bottomLeftCorner<3, 3>() = B.eigen().transpose();
+    m.template bottomRightCorner<3, 3>() = C.eigen();
+    return m;
   }
 
+  /// Iᴬ v = (A ω + B v ; Bᵀ ω + C v)
   SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
-#ifdef SD_PACKED3
-    if constexpr (std::is_same<S, double>::value) {  // [A ω + B v ; Bᵀ ω + C v] on the blocks' columns
-      using namespace packed3;
-      Packed3 top, bottom;
-      times_motion(load_blocks(matrix), v.angular.data(), v.linear.data(), top, bottom);
-      return {to_vector3(top), to_vector3(bottom)};
-    }
-#endif
-    return {matrix.template topLeftCorner<3, 3>() * v.angular + matrix.template topRightCorner<3, 3>() * v.linear,
-            matrix.template bottomLeftCorner<3, 3>() * v.angular + matrix.template bottomRightCorner<3, 3>() * v.linear};
+    return {A * v.angular + B * v.linear, B.transposeTimes(v.angular) + C * v.linear};
   }
 
-  ArticulatedInertia& operator+=(const ArticulatedInertia& o) { matrix += o.matrix; return *this; }
+  /// Iᴬ − U Wᵀ for forces U = (U_n ; U_f) and W = (W_n ; W_f): the ABA's downdate U D⁻¹ Uᵀ, one
+  /// column of U at a time with W = U D⁻¹'s matching column.
+  SD_INLINE void subtractOuter(const ForceVector<S>& U, const ForceVector<S>& W) {
+    A -= Mat3<S>::Outer(U.angular, W.angular);
+    B -= Mat3<S>::Outer(U.angular, W.linear);
+    C -= Mat3<S>::Outer(U.linear, W.linear);
+  }
+
+  ArticulatedInertia& operator+=(const ArticulatedInertia& o) {
+    A += o.A;
+    B += o.B;
+    C += o.C;
+    return *this;
+  }
 };
 
 }  // namespace spatial_dynamics

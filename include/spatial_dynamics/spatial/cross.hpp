@@ -4,43 +4,29 @@
 
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/number/packed3.hpp"
+#include "spatial_dynamics/spatial/mat3.hpp"
 
 namespace spatial_dynamics {
 
 /// v × m = (ω×ω_m ; ω×v_m + v×ω_m)   (eq. 17)
 template <class S>
 SD_INLINE MotionVector<S> cross(const MotionVector<S>& v, const MotionVector<S>& m) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value) {
-    using namespace packed3;
-    const Packed3 w = load3(v.angular), u = load3(v.linear), mw = load3(m.angular), mv = load3(m.linear);
-    return {to_vector3(cross(w, mw)), to_vector3(cross(w, mv) + cross(u, mw))};
-  }
-#endif
-  return {cross_3d(v.angular, m.angular), Vector3<S>(cross_3d(v.angular, m.linear) + cross_3d(v.linear, m.angular))};
+  return {cross(v.angular, m.angular), cross(v.angular, m.linear) + cross(v.linear, m.angular)};
 }
 
 /// v ×* f = (ω×n + v×f ; ω×f)   (eq. 18)
 template <class S>
 SD_INLINE ForceVector<S> cross(const MotionVector<S>& v, const ForceVector<S>& f) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value) {
-    using namespace packed3;
-    const Packed3 w = load3(v.angular), u = load3(v.linear), n = load3(f.angular), l = load3(f.linear);
-    return {to_vector3(cross(w, n) + cross(u, l)), to_vector3(cross(w, l))};
-  }
-#endif
-  return {Vector3<S>(cross_3d(v.angular, f.angular) + cross_3d(v.linear, f.linear)), cross_3d(v.angular, f.linear)};
+  return {cross(v.angular, f.angular) + cross(v.linear, f.linear), cross(v.angular, f.linear)};
 }
 
 /// The 6×6 matrix of v× (eq. 17): [ω× 0; v× ω×].
 template <class S>
 Matrix6<S> motion_cross_matrix(const MotionVector<S>& v) {
   Matrix6<S> m = Matrix6<S>::Zero();
-  m.template topLeftCorner<3, 3>() = skew(v.angular);
-  m.template bottomLeftCorner<3, 3>() = skew(v.linear);
-  m.template bottomRightCorner<3, 3>() = skew(v.angular);
+  m.template topLeftCorner<3, 3>() = skew(v.angular).eigen();
+  m.template bottomLeftCorner<3, 3>() = skew(v.linear).eigen();
+  m.template bottomRightCorner<3, 3>() = skew(v.angular).eigen();
   return m;
 }
 
@@ -48,9 +34,9 @@ Matrix6<S> motion_cross_matrix(const MotionVector<S>& v) {
 template <class S>
 Matrix6<S> force_cross_matrix(const MotionVector<S>& v) {
   Matrix6<S> m = Matrix6<S>::Zero();
-  m.template topLeftCorner<3, 3>() = skew(v.angular);
-  m.template topRightCorner<3, 3>() = skew(v.linear);
-  m.template bottomRightCorner<3, 3>() = skew(v.angular);
+  m.template topLeftCorner<3, 3>() = skew(v.angular).eigen();
+  m.template topRightCorner<3, 3>() = skew(v.linear).eigen();
+  m.template bottomRightCorner<3, 3>() = skew(v.angular).eigen();
   return m;
 }
 

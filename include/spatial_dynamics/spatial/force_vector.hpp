@@ -3,26 +3,29 @@
 #pragma once
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/vec3.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
 
 namespace spatial_dynamics {
 
 template <class S>
 struct ForceVector {
-  Vector3<S> angular;  // n_O: moment about the frame origin
-  Vector3<S> linear;   // f: resultant force
+  Vec3<S> angular;  // n_O: moment about the frame origin
+  Vec3<S> linear;   // f: resultant force
 
   ForceVector() = default;
-  ForceVector(const Vector3<S>& angular_part, const Vector3<S>& linear_part)
+  SD_INLINE ForceVector(const Vec3<S>& angular_part, const Vec3<S>& linear_part)
       : angular(angular_part), linear(linear_part) {}
-  explicit ForceVector(const Vector6<S>& f) : angular(f.template head<3>()), linear(f.template tail<3>()) {}
+  explicit ForceVector(const Vector6<S>& f) : angular(f[0], f[1], f[2]), linear(f[3], f[4], f[5]) {}
 
-  static ForceVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
+  static ForceVector Zero() { return {Vec3<S>(), Vec3<S>()}; }
 
   Vector6<S> toVector() const {
-    Vector6<S> f;  // block by block: the comma initializer peels alignment at run time
-    f.template head<3>() = angular;
-    f.template tail<3>() = linear;
+    Vector6<S> f;
+    for (int k = 0; k < 3; ++k) {
+      f[k] = angular[k];
+      f[k + 3] = linear[k];
+    }
     return f;
   }
 
@@ -46,7 +49,7 @@ ForceVector<S> operator*(const S& k, const ForceVector<S>& f) { return f * k; }
 /// (Featherstone 2010, eq. 7). Defined only between a motion and a force.
 template <class S>
 SD_INLINE S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
-  return m.angular.dot(f.angular) + m.linear.dot(f.linear);
+  return dot(m.angular, f.angular) + dot(m.linear, f.linear);
 }
 template <class S>
 SD_INLINE S dot(const ForceVector<S>& f, const MotionVector<S>& m) {

@@ -4,25 +4,28 @@
 #pragma once
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/vec3.hpp"
 
 namespace spatial_dynamics {
 
 template <class S>
 struct MotionVector {
-  Vector3<S> angular;  // ω
-  Vector3<S> linear;   // v_O: velocity of the body-fixed point at the frame origin
+  Vec3<S> angular;  // ω
+  Vec3<S> linear;   // v_O: velocity of the body-fixed point at the frame origin
 
   MotionVector() = default;
-  MotionVector(const Vector3<S>& angular_part, const Vector3<S>& linear_part)
+  SD_INLINE MotionVector(const Vec3<S>& angular_part, const Vec3<S>& linear_part)
       : angular(angular_part), linear(linear_part) {}
-  explicit MotionVector(const Vector6<S>& v) : angular(v.template head<3>()), linear(v.template tail<3>()) {}
+  explicit MotionVector(const Vector6<S>& v) : angular(v[0], v[1], v[2]), linear(v[3], v[4], v[5]) {}
 
-  static MotionVector Zero() { return {Vector3<S>::Zero(), Vector3<S>::Zero()}; }
+  static MotionVector Zero() { return {Vec3<S>(), Vec3<S>()}; }
 
   Vector6<S> toVector() const {
-    Vector6<S> v;  // block by block: the comma initializer peels alignment at run time
-    v.template head<3>() = angular;
-    v.template tail<3>() = linear;
+    Vector6<S> v;
+    for (int k = 0; k < 3; ++k) {
+      v[k] = angular[k];
+      v[k + 3] = linear[k];
+    }
     return v;
   }
 

@@ -8,55 +8,45 @@
 #include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/force_vector.hpp"
 #include "spatial_dynamics/spatial/motion_vector.hpp"
-#include "spatial_dynamics/spatial/number/packed3.hpp"
+#include "spatial_dynamics/spatial/mat3.hpp"
 
 namespace spatial_dynamics {
 
 template <class S>
 struct RigidInertia {
   S mass{0};
-  Vector3<S> first_moment = Vector3<S>::Zero();          // h = m c
-  Matrix3<S> rotational_inertia = Matrix3<S>::Zero();    // Ī_O, about the frame origin
+  Vec3<S> first_moment;          // h = m c
+  Mat3<S> rotational_inertia;    // Ī_O, about the frame origin
 
   RigidInertia() = default;
-  RigidInertia(const S& m, const Vector3<S>& h, const Matrix3<S>& inertia_about_origin)
+  RigidInertia(const S& m, const Vec3<S>& h, const Mat3<S>& inertia_about_origin)
       : mass(m), first_moment(h), rotational_inertia(inertia_about_origin) {}
 
   static RigidInertia Zero() { return RigidInertia(); }
 
   /// Whether all ten parameters are finite (x − x is 0 exactly for a finite x).
-  bool allFinite() const {
-    return mass - mass == S(0) && first_moment.allFinite() && rotational_inertia.allFinite();
-  }
+  bool allFinite() const { return mass - mass == S(0) && first_moment.allFinite() && rotational_inertia.allFinite(); }
 
   /// From mass, centre of mass c and rotational inertia Ī_c about c (eq. 25).
-  static RigidInertia FromMassCenterInertia(const S& m, const Vector3<S>& c, const Matrix3<S>& inertia_about_com) {
-    const Matrix3<S> cx = skew(c);
-    return RigidInertia(m, m * c, inertia_about_com - m * cx * cx);
+  static RigidInertia FromMassCenterInertia(const S& m, const Vec3<S>& c, const Mat3<S>& inertia_about_com) {
+    const Mat3<S> cx = skew(c);
+    return RigidInertia(m, c * m, inertia_about_com - (cx * cx) * m);
   }
 
   /// Centre of mass; undefined (division by zero) for a massless body.
-  Vector3<S> centerOfMass() const { return first_moment / mass; }
+  Vec3<S> centerOfMass() const { return first_moment / mass; }
 
   /// Rotational inertia about the centre of mass, Ī_c = Ī_O - m c× c×ᵀ (eq. 25 solved for Ī_c).
-  Matrix3<S> inertiaAboutCenterOfMass() const {
-    const Matrix3<S> hx = skew(first_moment);
-    return rotational_inertia + hx * hx / mass;
+  Mat3<S> inertiaAboutCenterOfMass() const {
+    const Mat3<S> hx = skew(first_moment);
+    const Mat3<S> hxhx = hx * hx;
+    return rotational_inertia + Mat3<S>(hxhx.col(0) / mass, hxhx.col(1) / mass, hxhx.col(2) / mass);
   }
 
   /// I v = (Ī_O ω + h×v ; m v − h×ω)   (eq. 25 applied to a motion vector)
   SD_INLINE ForceVector<S> operator*(const MotionVector<S>& v) const {
-#ifdef SD_PACKED3
-    if constexpr (std::is_same<S, double>::value) {
-      using namespace packed3;
-      Packed3 I0, I1, I2;
-      load_columns(rotational_inertia, I0, I1, I2);
-      const Packed3 h = load3(first_moment), w = load3(v.angular), lin = load3(v.linear);
-      return {to_vector3(mat_vec(I0, I1, I2, w) + cross(h, lin)), to_vector3(mass * lin - cross(h, w))};
-    }
-#endif
-    return {rotational_inertia * v.angular + cross_3d(first_moment, v.linear),
-            mass * v.linear - cross_3d(first_moment, v.angular)};
+    return {rotational_inertia * v.angular + cross(first_moment, v.linear),
+            v.linear * mass - cross(first_moment, v.angular)};
   }
 
   /// The velocity-product (bias) force v ×* I v (eq. 29 with a = 0), as
@@ -66,15 +56,10 @@ struct RigidInertia {
   /// far out on a fast chain that noise (ε m |v|²) outweighs the force. The two remaining terms
   /// ω × (h × v) − v × (h × ω) are h × (ω × v) by the Jacobi identity.
   SD_INLINE ForceVector<S> biasForce(const MotionVector<S>& v) const {
-    const Vector3<S>& w = v.angular;
-    const Matrix3<S>& J = rotational_inertia;  // Ī_O ω written out: Eigen's product costs ~15 ns a body here
-    const Vector3<S> J_w(J(0, 0) * w.x() + J(0, 1) * w.y() + J(0, 2) * w.z(),
-                         J(1, 0) * w.x() + J(1, 1) * w.y() + J(1, 2) * w.z(),
-                         J(2, 0) * w.x() + J(2, 1) * w.y() + J(2, 2) * w.z());
-    const Vector3<S> w_cross_v = cross_3d(w, v.linear);
-    const Vector3<S> h_cross_w = cross_3d(first_moment, w);
-    return {Vector3<S>(cross_3d(w, J_w) + cross_3d(first_moment, w_cross_v)),
-            Vector3<S>(mass * w_cross_v - cross_3d(w, h_cross_w))};
+    const Vec3<S>& w = v.angular;
+    const Vec3<S> w_cross_v = cross(w, v.linear);
+    return {cross(w, rotational_inertia * w) + cross(first_moment, w_cross_v),
+            w_cross_v * mass - cross(w, cross(first_moment, w))};
   }
 
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
@@ -93,8 +78,8 @@ struct RigidInertia {
   /// The 6×6 matrix of eq. (25).
   Matrix6<S> toMatrix() const {
     Matrix6<S> m;
-    const Matrix3<S> hx = skew(first_moment);
-    m.template topLeftCorner<3, 3>() = rotational_inertia;
+    const Matrix3<S> hx = skew(first_moment).eigen();
+    m.template topLeftCorner<3, 3>() = rotational_inertia.eigen();
     m.template topRightCorner<3, 3>() = hx;
     m.template bottomLeftCorner<3, 3>() = -hx;
     m.template bottomRightCorner<3, 3>() = mass * Matrix3<S>::Identity();
@@ -126,9 +111,9 @@ ForceVector<S> equation_of_motion(const RigidInertia<S>& inertia, const MotionVe
 }
 
 /// Gravity force on a rigid body, f_g = I a_g, with a_g = (0; g) the gravitational acceleration.
-template <class S>
-ForceVector<S> gravity_force(const RigidInertia<S>& inertia, const Vector3<S>& g) {
-  return inertia * MotionVector<S>(Vector3<S>::Zero(), g);
+template <class S, class Vector>
+ForceVector<S> gravity_force(const RigidInertia<S>& inertia, const Vector& g) {
+  return inertia * MotionVector<S>(Vec3<S>(), Vec3<S>(g));
 }
 
 /// Time derivative of a body's inertia expressed in fixed coordinates while the body moves with

@@ -1,62 +1,40 @@
 // Coordinate rotations of a rotation matrix E by an angle of known sine and cosine: about a
-// coordinate axis (two rows mixed) or about a general unit axis (RBDA eq. 2.24, transposed), in
-// place or into a new matrix (packed where the CPU has AVX2 and FMA).
+// coordinate axis (two rows mixed) or about a general unit axis (RBDA eq. 2.24, transposed).
 #pragma once
 
-#include <type_traits>
-
-#include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/number/packed3.hpp"
+#include "spatial_dynamics/spatial/mat3.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
 
-/// Rows (m, n) of E become (c·row_m + s·row_n, −s·row_m + c·row_n): E ← rot_axis(θ) E
-/// for a coordinate rotation about the remaining axis.
-template <class S>
-SD_INLINE void rotate_rows(Matrix3<S>& E, int m, int n, const S& c, const S& s) {
-  for (int k = 0; k < 3; ++k) {
-    const S em = E(m, k), en = E(n, k);
-    E(m, k) = c * em + s * en;
-    E(n, k) = c * en - s * em;
-  }
+/// rot_k(θ) E for the coordinate rotation about axis k (RBDA Table 2.2's rx, ry, rz), from
+/// c = cos θ and s = sin θ: rows m = k + 1 and n = k + 2 (mod 3) of E become
+/// (c·row_m + s·row_n, c·row_n − s·row_m).
+template <int k, class S>
+SD_INLINE Mat3<S> rotated_about_coordinate_axis(const Mat3<S>& E, const S& c, const S& s) {
+  constexpr int m = (k + 1) % 3, n = (k + 2) % 3;
+  const auto column = [](const S& at_m, const S& at_n) SD_INLINE_LAMBDA {  // of rot_k(θ)
+    S x[3] = {S(0), S(0), S(0)};
+    x[m] = at_m;
+    x[n] = at_n;
+    return Vec3<S>(x[0], x[1], x[2]);
+  };
+  Mat3<S> R;
+  R.column[k] = Vec3<S>::Unit(k);
+  R.column[m] = column(c, -s);
+  R.column[n] = column(s, c);
+  return R * E;
 }
 
-/// E ← rot(a, θ)ᵀ E column by column, from c = cos θ and s = sin θ (RBDA eq. 2.24, transposed):
-/// each column e becomes c e − s a×e + (1 − c)(a·e) a, without forming the rotation matrix.
+/// rot(a, θ)ᵀ E for a unit axis a, from c = cos θ and s = sin θ (RBDA eq. 2.24, transposed):
+/// rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ by its columns, times E.
 template <class S>
-SD_INLINE void rotate_about_axis(Matrix3<S>& E, const Vector3<S>& a, const S& c, const S& s) {
-  for (int k = 0; k < 3; ++k) {
-    const Vector3<S> e = E.col(k);
-    E.col(k) = c * e - s * cross_3d(a, e) + ((S(1) - c) * a.dot(e)) * a;
-  }
-}
-
-/// rot(a, θ)ᵀ E for a general unit axis a, from c = cos θ and s = sin θ (RBDA eq. 2.24,
-/// transposed): packed where the CPU has AVX2 and FMA.
-template <class S>
-SD_INLINE Matrix3<S> rotated_about_axis(const Matrix3<S>& E_tree, const Vector3<S>& a, const S& c, const S& s) {
-#ifdef SD_PACKED3
-  if constexpr (std::is_same<S, double>::value) {
-    using namespace packed3;
-    Packed3 c0, c1, c2;
-    load_columns(E_tree, c0, c1, c2);
-    // rot(a, θ)ᵀ = c 1 − s a× + (1 − c) a aᵀ, by its rows r0..r2.
-    const Packed3 axis = make(a.x(), a.y(), a.z());
-    const double k = 1 - c;
-    const Packed3 r0 = (k * a.x()) * axis + make(c, -s * a.z(), s * a.y());
-    const Packed3 r1 = (k * a.y()) * axis + make(s * a.z(), c, -s * a.x());
-    const Packed3 r2 = (k * a.z()) * axis + make(-s * a.y(), s * a.x(), c);
-    Matrix3<S> E;
-    store3(mat_vec(r0, r1, r2, c0), E.data());
-    store3(mat_vec(r0, r1, r2, c1), E.data() + 3);
-    store3(mat_vec(r0, r1, r2, c2), E.data() + 6);
-    return E;
-  }
-#endif
-  Matrix3<S> E = E_tree;
-  rotate_about_axis(E, a, c, s);
-  return E;
+SD_INLINE Mat3<S> rotated_about_axis(const Mat3<S>& E, const Vec3<S>& a, const S& c, const S& s) {
+  const S k = S(1) - c;
+  const Mat3<S> R(a * (k * a[0]) + Vec3<S>(c, -(s * a[2]), s * a[1]),  // column j: c e_j − s a × e_j + k a_j a
+                  a * (k * a[1]) + Vec3<S>(s * a[2], c, -(s * a[0])),
+                  a * (k * a[2]) + Vec3<S>(-(s * a[1]), s * a[0], c));
+  return R * E;
 }
 
 }  // namespace detail

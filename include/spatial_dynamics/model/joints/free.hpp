@@ -27,12 +27,11 @@ struct FreeJoint {
     if (!(abs(quat.squaredNorm() - S(1)) <= S(1e-6)))
       throw std::invalid_argument("joint '" + joint.name + "': the quaternion (q[" + std::to_string(joint.idx_q + 3) + ".." +
                                   std::to_string(joint.idx_q + 6) + "]) is not of unit norm");
-    return {quat.toRotationMatrix().transpose() * X_tree.E,
-            Vector3<S>(X_tree.r + X_tree.E.transpose() * Vector3<S>(q[0], q[1], q[2]))};
+    return {Mat3<S>(quat.toRotationMatrix().transpose()) * X_tree.E, X_tree.r + X_tree.E.transposeTimes(Vec3<S>(q[0], q[1], q[2]))};
   }
   /// S q̇ = q̇.
   SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
-    return {Vector3<S>(qd[0], qd[1], qd[2]), Vector3<S>(qd[3], qd[4], qd[5])};
+    return {Vec3<S>(qd[0], qd[1], qd[2]), Vec3<S>(qd[3], qd[4], qd[5])};
   }
   /// c_J + v × S q̇ = v × q̇: c_J = 0.
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S& s, const S& c) const {
@@ -40,8 +39,6 @@ struct FreeJoint {
   }
   /// Sᵀ f = (n ; f).
   SD_INLINE Vector6<S> project(const ForceVector<S>& f, const S&, const S&) const { return f.toVector(); }
-  /// U = I S = I.
-  SD_INLINE Matrix6<S> inertia_times(const Matrix6<S>& I, const S&, const S&) const { return I; }
   MotionVector<S> column(int k, const S&, const S&) const {
     Vector6<S> e = Vector6<S>::Zero();
     e[k] = S(1);

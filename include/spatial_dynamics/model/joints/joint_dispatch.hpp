@@ -3,7 +3,7 @@
 // compiled once per joint type and no algorithm tests a joint's kind, axis or number of
 // coordinates. A joint type added to the list below is served by every algorithm; one that does
 // not provide what they ask of a joint (transform, motion, velocity_product, project,
-// inertia_times, column, names) does not compile.
+// column, names) does not compile.
 #pragma once
 
 #include <variant>
@@ -30,25 +30,27 @@ using JointModel = std::variant<RevoluteAxisJoint<S, 0>, RevoluteAxisJoint<S, 1>
                                 RevoluteJoint<S>, PrismaticAxisJoint<S, 0>, PrismaticAxisJoint<S, 1>,
                                 PrismaticAxisJoint<S, 2>, PrismaticJoint<S>, FreeJoint<S>, PlanarJoint<S>>;
 
-/// The joint type of a kind, unit axis (the plane's normal for a planar joint) and, for a planar
-/// joint, in-plane axes; an axis along +x, +y or +z takes the axis-aligned types.
+/// The joint type of a kind, unit axis (the plane's normal for a planar joint), for a planar
+/// joint its in-plane axes and for a screw joint its pitch; an axis along +x, +y or +z takes the
+/// axis-aligned types.
 template <class S>
 JointModel<S> make_joint_model(JointType type, const Vector3<S>& axis, const Vector3<S>& plane_x,
-                               const Vector3<S>& plane_y) {
+                               const Vector3<S>& plane_y, const S& pitch) {
+  static_cast<void>(pitch);
   const int k = axis == Vector3<S>::UnitX() ? 0 : axis == Vector3<S>::UnitY() ? 1 : axis == Vector3<S>::UnitZ() ? 2 : -1;
   switch (type) {
     case JointType::Revolute:
       if (k == 0) return RevoluteAxisJoint<S, 0>();
       if (k == 1) return RevoluteAxisJoint<S, 1>();
       if (k == 2) return RevoluteAxisJoint<S, 2>();
-      return RevoluteJoint<S>{axis};
+      return RevoluteJoint<S>{Vec3<S>(axis)};
     case JointType::Prismatic:
       if (k == 0) return PrismaticAxisJoint<S, 0>();
       if (k == 1) return PrismaticAxisJoint<S, 1>();
       if (k == 2) return PrismaticAxisJoint<S, 2>();
-      return PrismaticJoint<S>{axis};
+      return PrismaticJoint<S>{Vec3<S>(axis)};
     case JointType::Free: return FreeJoint<S>();
-    case JointType::Planar: return PlanarJoint<S>{axis, plane_x, plane_y};
+    case JointType::Planar: return PlanarJoint<S>{Vec3<S>(axis), Vec3<S>(plane_x), Vec3<S>(plane_y)};
   }
   __builtin_unreachable();  // type holds one of the enumerators above
 }

@@ -18,43 +18,36 @@ template <class S>
 struct PlanarJoint {
   static constexpr int nq = 3, nv = 3;
   static constexpr int angle_coordinate = 2;  // ψ = q[2]
-  Vector3<S> axis = Vector3<S>::UnitZ();      // n
-  Vector3<S> plane_x = Vector3<S>::UnitX();   // e₁
-  Vector3<S> plane_y = Vector3<S>::UnitY();   // e₂
+  Vec3<S> axis = Vec3<S>::UnitZ();      // n
+  Vec3<S> plane_x = Vec3<S>::UnitX();   // e₁
+  Vec3<S> plane_y = Vec3<S>::UnitY();   // e₂
 
   /// ^iX_λ = rot(E_J(ψ)) xlt(x e₁ + y e₂) X_tree: E = E_J(ψ) E_tree, r = r_tree + E_treeᵀ (x e₁ + y e₂).
   SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S* q, const S& s, const S& c,
                                           const JointLabel&) const {
     return {detail::rotated_about_axis(X_tree.E, axis, c, s),
-            Vector3<S>(X_tree.r + X_tree.E.transpose() * Vector3<S>(plane_x * q[0] + plane_y * q[1]))};
+            X_tree.r + X_tree.E.transposeTimes(plane_x * q[0] + plane_y * q[1])};
   }
   /// u₁ and u₂, the in-plane axes in child coordinates.
-  SD_INLINE Vector3<S> u1(const S& s, const S& c) const { return c * plane_x - s * plane_y; }
-  SD_INLINE Vector3<S> u2(const S& s, const S& c) const { return s * plane_x + c * plane_y; }
+  SD_INLINE Vec3<S> u1(const S& s, const S& c) const { return plane_x * c - plane_y * s; }
+  SD_INLINE Vec3<S> u2(const S& s, const S& c) const { return plane_x * s + plane_y * c; }
   /// S q̇ = (ψ̇ n ; ẋ u₁ + ẏ u₂).
   SD_INLINE MotionVector<S> motion(const S* qd, const S& s, const S& c) const {
-    return {Vector3<S>(axis * qd[2]), Vector3<S>(u1(s, c) * qd[0] + u2(s, c) * qd[1])};
+    return {axis * qd[2], u1(s, c) * qd[0] + u2(s, c) * qd[1]};
   }
   /// c_J + v × S q̇ with c_J = (0 ; (ẋ u₁ + ẏ u₂) × ψ̇ n).
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S& s, const S& c) const {
     const MotionVector<S> vJ = motion(qd, s, c);
-    return MotionVector<S>(Vector3<S>::Zero(), cross_3d(vJ.linear, vJ.angular)) + cross(v, vJ);
+    return MotionVector<S>(Vec3<S>(), cross(vJ.linear, vJ.angular)) + cross(v, vJ);
   }
   /// Sᵀ (n ; f) = (u₁ · f, u₂ · f, n · n).
   SD_INLINE Vector3<S> project(const ForceVector<S>& f, const S& s, const S& c) const {
-    return {u1(s, c).dot(f.linear), u2(s, c).dot(f.linear), axis.dot(f.angular)};
+    return {dot(u1(s, c), f.linear), dot(u2(s, c), f.linear), dot(axis, f.angular)};
   }
-  /// U = I S = (I (0 ; u₁), I (0 ; u₂), I (n ; 0)).
-  SD_INLINE Eigen::Matrix<S, 6, 3> inertia_times(const Matrix6<S>& I, const S& s, const S& c) const {
-    Eigen::Matrix<S, 6, 3> U;
-    U.col(0) = I.template rightCols<3>() * u1(s, c);
-    U.col(1) = I.template rightCols<3>() * u2(s, c);
-    U.col(2) = I.template leftCols<3>() * axis;
-    return U;
-  }
+
   MotionVector<S> column(int k, const S& s, const S& c) const {
-    if (k == 2) return {axis, Vector3<S>::Zero()};
-    return {Vector3<S>::Zero(), k == 0 ? u1(s, c) : u2(s, c)};
+    if (k == 2) return {axis, Vec3<S>()};
+    return {Vec3<S>(), k == 0 ? u1(s, c) : u2(s, c)};
   }
 
   static std::vector<std::string> position_names(const std::string& joint) { return velocity_names(joint); }

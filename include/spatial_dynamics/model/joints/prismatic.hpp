@@ -13,30 +13,27 @@ template <class S>
 struct PrismaticJoint {
   static constexpr int nq = 1, nv = 1;
   static constexpr int angle_coordinate = -1;
-  Vector3<S> axis = Vector3<S>::UnitZ();
+  Vec3<S> axis = Vec3<S>::UnitZ();
 
   /// ^iX_λ = xlt(q a) X_tree: E = E_tree, r = r_tree + E_treeᵀ (q a).
   SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S* q, const S&, const S&,
                                           const JointLabel&) const {
-    return {X_tree.E, Vector3<S>(X_tree.r + X_tree.E.transpose() * Vector3<S>(axis * q[0]))};
+    return {X_tree.E, X_tree.r + X_tree.E.transposeTimes(axis * q[0])};
   }
   /// S q̇ = (0 ; q̇ a).
   SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
-    return {Vector3<S>::Zero(), Vector3<S>(axis * qd[0])};
+    return {Vec3<S>(), axis * qd[0]};
   }
   /// c_J + v × S q̇ = (0 ; ω × q̇ a): c_J = 0.
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
-    return {Vector3<S>::Zero(), cross_3d(v.angular, Vector3<S>(axis * qd[0]))};
+    return {Vec3<S>(), cross(v.angular, axis * qd[0])};
   }
   /// Sᵀ f = a · f.
   SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
-    return Eigen::Matrix<S, 1, 1>(axis.dot(f.linear));
+    return Eigen::Matrix<S, 1, 1>(dot(axis, f.linear));
   }
-  /// U = I S = I (0 ; a).
-  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const {
-    return I.template rightCols<3>() * axis;
-  }
-  MotionVector<S> column(int, const S&, const S&) const { return {Vector3<S>::Zero(), axis}; }
+
+  MotionVector<S> column(int, const S&, const S&) const { return {Vec3<S>(), axis}; }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

@@ -17,23 +17,21 @@ struct PrismaticAxisJoint {
   /// ^iX_λ = xlt(q e_k) X_tree: E = E_tree, r = r_tree + E_treeᵀ q e_k (row k of E_tree, times q).
   SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S* q, const S&, const S&,
                                           const JointLabel&) const {
-    return {X_tree.E, Vector3<S>(X_tree.r + X_tree.E.row(k).transpose() * q[0])};
+    return {X_tree.E, X_tree.r + X_tree.E.row(k) * q[0]};
   }
   /// S q̇ = (0 ; q̇ e_k).
   SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
-    return {Vector3<S>::Zero(), detail::unit_axis<S, k>(qd[0])};
+    return {Vec3<S>(), detail::unit_axis<S, k>(qd[0])};
   }
   /// c_J + v × S q̇ = (0 ; ω × q̇ e_k): c_J = 0.
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
-    return {Vector3<S>::Zero(), detail::cross_unit_axis<k>(v.angular, qd[0])};
+    return {Vec3<S>(), detail::cross_unit_axis<k>(v.angular, qd[0])};
   }
   /// Sᵀ f = f_k.
   SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
     return Eigen::Matrix<S, 1, 1>(f.linear[k]);
   }
-  /// U = I S: column 3 + k of I.
-  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const { return I.col(3 + k); }
-  MotionVector<S> column(int, const S&, const S&) const { return {Vector3<S>::Zero(), detail::unit_axis<S, k>(S(1))}; }
+  MotionVector<S> column(int, const S&, const S&) const { return {Vec3<S>(), detail::unit_axis<S, k>(S(1))}; }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

@@ -14,7 +14,7 @@ template <class S>
 struct RevoluteJoint {
   static constexpr int nq = 1, nv = 1;
   static constexpr int angle_coordinate = 0;  // θ = q[0]; s, c = sin θ, cos θ
-  Vector3<S> axis = Vector3<S>::UnitZ();
+  Vec3<S> axis = Vec3<S>::UnitZ();
 
   /// ^iX_λ = X_J(θ) X_tree: E = rot(a, θ)ᵀ E_tree, r = r_tree.
   SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S*, const S& s, const S& c,
@@ -26,22 +26,19 @@ struct RevoluteJoint {
   }
   /// S q̇ = (q̇ a ; 0).
   SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
-    return {Vector3<S>(axis * qd[0]), Vector3<S>::Zero()};
+    return {axis * qd[0], Vec3<S>()};
   }
   /// c_J + v × S q̇ = (ω × q̇ a ; v_O × q̇ a): c_J = 0.
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
-    const Vector3<S> w(axis * qd[0]);
-    return {cross_3d(v.angular, w), cross_3d(v.linear, w)};
+    const Vec3<S> w = axis * qd[0];
+    return {cross(v.angular, w), cross(v.linear, w)};
   }
   /// Sᵀ f = a · n.
   SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
-    return Eigen::Matrix<S, 1, 1>(axis.dot(f.angular));
+    return Eigen::Matrix<S, 1, 1>(dot(axis, f.angular));
   }
-  /// U = I S = I (a ; 0).
-  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const {
-    return I.template leftCols<3>() * axis;
-  }
-  MotionVector<S> column(int, const S&, const S&) const { return {axis, Vector3<S>::Zero()}; }
+
+  MotionVector<S> column(int, const S&, const S&) const { return {axis, Vec3<S>()}; }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

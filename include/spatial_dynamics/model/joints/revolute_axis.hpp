@@ -18,13 +18,11 @@ struct RevoluteAxisJoint {
   /// ^iX_λ = X_J(θ) X_tree: E = rot_k(θ) E_tree, r = r_tree.
   SD_INLINE PluckerTransform<S> transform(const PluckerTransform<S>& X_tree, const S*, const S& s, const S& c,
                                           const JointLabel&) const {
-    PluckerTransform<S> X = X_tree;
-    detail::rotate_rows(X.E, (k + 1) % 3, (k + 2) % 3, c, s);
-    return X;
+    return {detail::rotated_about_coordinate_axis<k>(X_tree.E, c, s), X_tree.r};
   }
   /// S q̇ = (q̇ e_k ; 0).
   SD_INLINE MotionVector<S> motion(const S* qd, const S&, const S&) const {
-    return {detail::unit_axis<S, k>(qd[0]), Vector3<S>::Zero()};
+    return {detail::unit_axis<S, k>(qd[0]), Vec3<S>()};
   }
   /// c_J + v × S q̇ = (ω × q̇ e_k ; v_O × q̇ e_k): c_J = 0.
   SD_INLINE MotionVector<S> velocity_product(const MotionVector<S>& v, const S* qd, const S&, const S&) const {
@@ -34,9 +32,7 @@ struct RevoluteAxisJoint {
   SD_INLINE Eigen::Matrix<S, 1, 1> project(const ForceVector<S>& f, const S&, const S&) const {
     return Eigen::Matrix<S, 1, 1>(f.angular[k]);
   }
-  /// U = I S: column k of I.
-  SD_INLINE Eigen::Matrix<S, 6, 1> inertia_times(const Matrix6<S>& I, const S&, const S&) const { return I.col(k); }
-  MotionVector<S> column(int, const S&, const S&) const { return {detail::unit_axis<S, k>(S(1)), Vector3<S>::Zero()}; }
+  MotionVector<S> column(int, const S&, const S&) const { return {detail::unit_axis<S, k>(S(1)), Vec3<S>()}; }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

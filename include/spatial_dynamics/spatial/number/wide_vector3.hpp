@@ -9,8 +9,8 @@
 
 #include "spatial_dynamics/spatial/number/double_double.hpp"
 #include "spatial_dynamics/spatial/eigen_types.hpp"
+#include "spatial_dynamics/spatial/mat3.hpp"
 #include "spatial_dynamics/spatial/number/packed3_double_double.hpp"
-#include "spatial_dynamics/spatial/rotation_about_axis.hpp"
 
 namespace spatial_dynamics {
 
@@ -36,7 +36,7 @@ struct ScalarWideVector3 {
 /// E x (transposed: Eᵀ x) in WiderScalar<S>, each product of an S and a wide value.
 template <class S>
 struct ScalarWideRotation {
-  Matrix3<S> E;
+  Mat3<S> E;
 };
 template <class S>
 SD_INLINE ScalarWideVector3<S> operator*(const ScalarWideRotation<S>& R, const ScalarWideVector3<S>& v) {
@@ -53,11 +53,11 @@ SD_INLINE ScalarWideVector3<S> scale(const S& a, const ScalarWideVector3<S>& v) 
   return {{a * v.x[0], a * v.x[1], a * v.x[2]}};
 }
 template <class S>
-SD_INLINE ScalarWideVector3<S> cross(const ScalarWideVector3<S>& a, const Vector3<S>& b) {
+SD_INLINE ScalarWideVector3<S> cross(const ScalarWideVector3<S>& a, const Vec3<S>& b) {
   return {{a.x[1] * b[2] - a.x[2] * b[1], a.x[2] * b[0] - a.x[0] * b[2], a.x[0] * b[1] - a.x[1] * b[0]}};
 }
 template <class S>
-SD_INLINE ScalarWideVector3<S> cross(const Vector3<S>& a, const ScalarWideVector3<S>& b) {
+SD_INLINE ScalarWideVector3<S> cross(const Vec3<S>& a, const ScalarWideVector3<S>& b) {
   return {{a[1] * b.x[2] - a[2] * b.x[1], a[2] * b.x[0] - a[0] * b.x[2], a[0] * b.x[1] - a[1] * b.x[0]}};
 }
 
@@ -73,11 +73,11 @@ namespace wide3 {
 SD_INLINE packed3::PackedDoubleDouble scale(const double& a, const packed3::PackedDoubleDouble& v) {
   return packed3::scale(packed3::splat(a), v);
 }
-SD_INLINE packed3::PackedDoubleDouble cross(const packed3::PackedDoubleDouble& a, const Vector3<double>& b) {
-  return packed3::cross(a, packed3::load3(b));
+SD_INLINE packed3::PackedDoubleDouble cross(const packed3::PackedDoubleDouble& a, const Vec3<double>& b) {
+  return packed3::cross(a, packed3::load(b));
 }
-SD_INLINE packed3::PackedDoubleDouble cross(const Vector3<double>& a, const packed3::PackedDoubleDouble& b) {
-  return packed3::cross(packed3::load3(a), b);
+SD_INLINE packed3::PackedDoubleDouble cross(const Vec3<double>& a, const packed3::PackedDoubleDouble& b) {
+  return packed3::cross(packed3::load(a), b);
 }
 #endif
 
@@ -86,20 +86,9 @@ template <class S>
 struct Form {
   using Vector = ScalarWideVector3<S>;
   using Rotation = ScalarWideRotation<S>;
-  /// The rotation a pass on vec3::Form<S> holds (its member E), in this form.
-  template <class FormRotation>
-  static SD_INLINE Rotation rotation_of(const FormRotation& R) { return {R.E}; }
-  /// R y; where `about` tells that R rotates about a coordinate axis (R's coefficients then need
-  /// not be given), by the two coordinates it mixes, m = k + 1 and n = k + 2 (mod 3): (c y_m + s y_n,
-  /// c y_n − s y_m) (RBDA Table 2.2).
-  static SD_INLINE Vector rotate(const RotationAboutAxis<S>& about, const Rotation& R, const Vector& y) {
-    if (about.axis < 0) return R * y;
-    const int m = (about.axis + 1) % 3, n = (about.axis + 2) % 3;
-    Vector out = y;
-    out.x[m] = y.x[m] * about.c + y.x[n] * about.s;
-    out.x[n] = y.x[n] * about.c - y.x[m] * about.s;
-    return out;
-  }
+  /// E, and Eᵀ, as a rotation of wide 3-vectors.
+  static SD_INLINE Rotation rotation(const Mat3<S>& E) { return {E}; }
+  static SD_INLINE Rotation transposed_rotation(const Mat3<S>& E) { return {E.transpose()}; }
   static SD_INLINE Vector from(const Vector3<S>& v) { return {{WiderScalar<S>(v[0]), WiderScalar<S>(v[1]), WiderScalar<S>(v[2])}}; }
   static SD_INLINE Vector load(const WideVector3Storage<S>& s) {
     Vector v;
@@ -119,14 +108,9 @@ struct Form {
       }
     }
   }
-  /// The three lanes as WiderScalar<S>, or lane k.
+  /// The three lanes as WiderScalar<S>.
   static SD_INLINE void lanes(const Vector& v, WiderScalar<S>* out) {
     for (int k = 0; k < 3; ++k) out[k] = v.x[k];
-  }
-  static SD_INLINE WiderScalar<S> lane(const Vector& v, int k) { return v.x[k]; }
-  /// a · v for a in S.
-  static SD_INLINE WiderScalar<S> dot(const Vector3<S>& a, const Vector& v) {
-    return (v.x[0] * a[0] + v.x[1] * a[1]) + v.x[2] * a[2];
   }
 };
 
@@ -135,18 +119,11 @@ template <>
 struct Form<double> {
   using Vector = packed3::PackedDoubleDouble;
   using Rotation = packed3::Columns;
-  /// The rotation a pass on vec3::Form<double> holds: the same columns.
-  static SD_INLINE const Rotation& rotation_of(const Rotation& R) { return R; }
-  /// R y; by the lanes it mixes where `about` tells that R rotates about a coordinate axis (R's
-  /// coefficients then need not be given).
-  static SD_INLINE Vector rotate(const RotationAboutAxis<double>& about, const Rotation& R, const Vector& y) {
-    if (about.axis < 0) return R * y;
-    Vector out;
-    packed3::with_axis(about.axis, [&](auto k) SD_INLINE_LAMBDA {
-      out = packed3::times(packed3::AxisRotation<decltype(k)::value>(about.s, about.c), y, false);
-    });
-    return out;
+  /// E, and Eᵀ, by their columns.
+  static SD_INLINE Rotation rotation(const Mat3<double>& E) {
+    return {packed3::load(E.column[0]), packed3::load(E.column[1]), packed3::load(E.column[2])};
   }
+  static SD_INLINE Rotation transposed_rotation(const Mat3<double>& E) { return rotation(E.transpose()); }
   static SD_INLINE Vector from(const Vector3<double>& v) { return {packed3::load3(v), packed3::Packed3{}}; }
   static SD_INLINE Vector load(const WideVector3Storage<double>& s) { return {packed3::load(s.hi), packed3::load(s.lo)}; }
   static SD_INLINE void store(const Vector& v, WideVector3Storage<double>& s) {
@@ -155,16 +132,6 @@ struct Form<double> {
   }
   static SD_INLINE void lanes(const Vector& v, DoubleDouble* out) {
     for (int k = 0; k < 3; ++k) out[k] = DoubleDouble(v.hi[k], v.lo[k]);
-  }
-  static SD_INLINE DoubleDouble lane(const Vector& v, int k) {
-    switch (k) {  // lanes by constant indices
-      case 0: return {v.hi[0], v.lo[0]};
-      case 1: return {v.hi[1], v.lo[1]};
-      default: return {v.hi[2], v.lo[2]};
-    }
-  }
-  static SD_INLINE DoubleDouble dot(const Vector3<double>& a, const Vector& v) {
-    return packed3::dot(packed3::load3(a), v);
   }
 };
 #endif

@@ -1,7 +1,7 @@
-// What the algorithms ask of a joint, through the one dispatch (model/joints/joint_dispatch.hpp)
-// to the joint models of model/joints/: X_J(q) X_tree, S q̇, c_J, Sᵀ f and the columns of S; the
-// 1-DoF shortcuts of the passes (RBDA Table 4.1 with S = (a ; 0) or (0 ; a)); and the whole-vector
-// access that handles coupled mimic joints and the joints' angles.
+// What the algorithms ask of body i's joint, through the one dispatch (joint_dispatch.hpp) to the
+// joint types of this directory: ^iX_λ = X_J(q) X_tree, S q̇, c_J + v × S q̇, Sᵀ f and the
+// columns of S (RBDA Table 4.1), read from the model's whole vectors q, q̇, q̈ and τ, with the
+// coupled mimic joints (q = k q_master + offset) and the joints' angles handled here.
 #pragma once
 
 #include <algorithm>
@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "spatial_dynamics/model/data.hpp"
-#include "spatial_dynamics/model/joints/joint_axis_shortcuts.hpp"
 #include "spatial_dynamics/model/model.hpp"
 #include "spatial_dynamics/spatial/number/lane_trigonometry.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
@@ -38,20 +38,6 @@ SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, Pluc
   joint_up_transform(model, i, q, s, c, X);
 }
 
-/// Whether a 1-DoF joint's axis is its rotation (revolute: S = (a ; 0)) or its translation
-/// (prismatic: S = (0 ; a)). The 1-DoF shortcuts below are taken only where j.nv == 1.
-template <class S>
-SD_INLINE bool one_dof_rotates(const Joint<S>& j) {
-  return j.type == JointType::Revolute;
-}
-
-/// S q̇ for a 1-DoF joint with velocity (or acceleration) v.
-template <class S>
-SD_INLINE MotionVector<S> one_dof_motion(const Joint<S>& j, const S& v) {
-  if (one_dof_rotates(j)) return {detail::scaled_axis(j, v), Vector3<S>::Zero()};
-  return {Vector3<S>::Zero(), detail::scaled_axis(j, v)};
-}
-
 // ---- any joint, through its type (model/joints/); s and c are its angle's sine and cosine ----
 
 /// S q̇; `qd` points at the joint's first velocity coordinate.
@@ -65,14 +51,6 @@ template <class S>
 SD_INLINE MotionVector<S> joint_bias(const Joint<S>& j, const S& s, const S& c, const S* qd) {
   return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
     return joint.velocity_product(MotionVector<S>::Zero(), qd, s, c);  // c_J + 0 × S q̇
-  });
-}
-
-/// U = I S (6 × nv, in U's first nv columns) for a 6 × 6 inertia I.
-template <class S>
-SD_INLINE void inertia_times_subspace(const Joint<S>& j, const S& s, const S& c, const Matrix6<S>& I, Matrix6<S>& U) {
-  visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
-    U.template leftCols<std::decay_t<decltype(joint)>::nv>() = joint.inertia_times(I, s, c);
   });
 }
 
@@ -133,40 +111,87 @@ SD_INLINE void joint_sines_and_cosines(const Model<S>& model, Data<S>& data, con
   }
 }
 
+/// Body i's joint at a state, for one visit of its type per body (visit): the joint's coordinates
+/// in q, q̇ and q̈ (pointers into them, or for a coupled joint k q_master + offset, k q̇_master and
+/// k q̈_master held here), its angle's sine and cosine (joint_sines_and_cosines, called before),
+/// its tree transform and its label for error messages.
+template <class S>
+struct BodyJoint {
+  const Joint<S>& joint;
+  const PluckerTransform<S>& X_tree;
+  JointLabel label;
+  S s, c;
+  const S *q, *qd, *qdd;
+  S own_q[7], own_qd[6], own_qdd[6];  // a coupled joint's (sized for any joint type's reads)
+
+  SD_INLINE BodyJoint(const Model<S>& model, const Data<S>& data, int i, const S* q_all, const S* qd_all = nullptr,
+                      const S* qdd_all = nullptr)
+      : joint(model.joints[i]),
+        X_tree(model.X_tree[i]),
+        label{model.joint_names[i], model.joints[i].idx_q},
+        s(data.joint_sin[i]),
+        c(data.joint_cos[i]) {
+    const S k = joint.mimic.multiplier;
+    if (!joint.coupled) {
+      q = q_all + joint.idx_q;
+      qd = qd_all ? qd_all + joint.idx_v : nullptr;
+      qdd = qdd_all ? qdd_all + joint.idx_v : nullptr;
+      return;
+    }
+    own_q[0] = k * q_all[joint.idx_q] + joint.mimic.offset;
+    own_qd[0] = qd_all ? k * qd_all[joint.idx_v] : S(0);
+    own_qdd[0] = qdd_all ? k * qdd_all[joint.idx_v] : S(0);
+    q = own_q;
+    qd = own_qd;
+    qdd = own_qdd;
+  }
+
+  /// visit(joint type) (joint_dispatch.hpp).
+  template <class Visitor>
+  SD_INLINE decltype(auto) visit(Visitor&& visitor) const {
+    return visit_joint(joint, std::forward<Visitor>(visitor));
+  }
+};
+
 /// ^iX_λ(i) from the whole configuration vector q; the joint angle's sin and cos are read from
 /// data (joint_sines_and_cosines, called before).
 template <class S>
 SD_INLINE void body_up_transform(const Model<S>& model, const Data<S>& data, int i, const S* q, PluckerTransform<S>& X) {
-  const Joint<S>& j = model.joints[i];
-  if (j.coupled) {  // q = k q_master + offset
-    const S coupled_q = j.mimic.multiplier * q[j.idx_q] + j.mimic.offset;
-    joint_up_transform(model, i, &coupled_q, data.joint_sin[i], data.joint_cos[i], X);
-  } else {
-    joint_up_transform(model, i, q + j.idx_q, data.joint_sin[i], data.joint_cos[i], X);
-  }
+  const BodyJoint<S> J(model, data, i, q);
+  J.visit([&](const auto& joint) SD_INLINE_LAMBDA { X = joint.transform(J.X_tree, J.q, J.s, J.c, J.label); });
 }
 
-/// What is known of ^iX_λ(i)'s rotation beyond its coefficients (Data::up_rotation_axis); the
-/// joint angle's sin and cos as body_up_transform reads them.
+/// Body i's joint rates (q̇ or q̈) from the whole vector: a pointer into it, or for a coupled joint
+/// k q̇_master written to `own` (q̇ = k q̇_master).
 template <class S>
-SD_INLINE RotationAboutAxis<S> body_up_rotation(const Data<S>& data, int i) {
-  return {data.up_rotation_axis[i], data.joint_sin[i], data.joint_cos[i]};
+SD_INLINE const S* body_joint_rates(const Joint<S>& j, const S* qd, S& own) {
+  if (!j.coupled) return qd + j.idx_v;
+  own = j.mimic.multiplier * qd[j.idx_v];
+  return &own;
 }
 
 /// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
 template <class S>
 SD_INLINE MotionVector<S> body_joint_motion(const Model<S>& model, const Data<S>& data, int i, const S* qd) {
-  const Joint<S>& j = model.joints[i];
-  if (j.coupled) return one_dof_motion(j, S(j.mimic.multiplier * qd[j.idx_v]));  // q̇ = k q̇_master
-  return joint_motion(j, data.joint_sin[i], data.joint_cos[i], qd + j.idx_v);
+  S own;
+  return joint_motion(model.joints[i], data.joint_sin[i], data.joint_cos[i], body_joint_rates(model.joints[i], qd, own));
 }
 
-/// c_J of body i's joint from the whole velocity vector (zero for a coupled, 1-DoF joint).
+/// c_J + v × S q̇ of body i's joint (RBDA eq. 5.7's velocity-product term) for the body's velocity v.
+template <class S>
+SD_INLINE MotionVector<S> body_velocity_product(const Model<S>& model, const Data<S>& data, int i,
+                                                const MotionVector<S>& v, const S* qd) {
+  S own;
+  const S* rates = body_joint_rates(model.joints[i], qd, own);
+  return visit_joint(model.joints[i], [&](const auto& joint) SD_INLINE_LAMBDA {
+    return joint.velocity_product(v, rates, data.joint_sin[i], data.joint_cos[i]);
+  });
+}
+
+/// c_J of body i's joint from the whole velocity vector.
 template <class S>
 SD_INLINE MotionVector<S> body_joint_bias(const Model<S>& model, const Data<S>& data, int i, const S* qd) {
-  const Joint<S>& j = model.joints[i];
-  if (j.coupled) return MotionVector<S>::Zero();
-  return joint_bias(j, data.joint_sin[i], data.joint_cos[i], qd + j.idx_v);
+  return body_velocity_product(model, data, i, MotionVector<S>::Zero(), qd);
 }
 
 /// Column k of body i's S.
