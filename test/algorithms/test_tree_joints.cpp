@@ -6,7 +6,9 @@
 //  - ID(FD(τ)) = τ to 1e-12, M symmetric positive definite, the batch RNEA equal to the RNEA;
 //  - RNEA and CRBA within 4e-15 of the float128 reference (the floating joint directly, a planar
 //    joint through its elementary equivalent);
-//  - scenes keep such joints and refuse to lock them, naming the joint.
+//  - scenes keep such joints and refuse to lock them, naming the joint;
+//  - a helical joint (a screw) against the float128 reference and the identities, and at pitch 0
+//    a revolute joint.
 // The robots: the Panda on a planar cart (normal z, and a tilted normal with an offset mount), a
 // UR5 with a planar tool plate at its wrist (a moving parent, with a spinning tool below it), and
 // a Panda holding an object on a floating joint (fixed and floating base).
@@ -278,4 +280,58 @@ TEST(TreeJoints, ScenesKeepPlanarAndFloatingJointsAndRefuseToLockThem) {
   const VectorXd tau_full = sd::rnea(cart, full_data, q, qd, qdd);
   EXPECT_LE(relative_error(VectorXd(sd::rnea(reduced, reduced_data, x.q, x.qd, x.qdd)), VectorXd(tau_full.head(4))),
             kEquivalent);
+}
+
+// The helical joint (model/joints/helical.hpp): UR5 with its shoulder-lift and wrist-2 joints made
+// screws (pitch 0.05 and −0.2 m/rad) through the RNEA and the CRBA against the float128 reference
+// (its own screw model, X_J = rot(E(a, q)) xlt(h q a)), ID(FD(τ)) = τ through the ABA, the
+// refined ABA and CRBA + Cholesky, and at pitch 0 the same numbers as the revolute joints.
+TEST(HelicalJoint, ThroughEveryAlgorithmAgainstTheReferenceAndAtPitchZeroARevoluteJoint) {
+  const sd::Model<double> ur5 = sd::build_model_from_urdf_string(robot_text("ur5.urdf"));
+  const auto with_screws = [&](double pitch_lift, double pitch_wrist) {
+    sd::Model<double> model = ur5;
+    for (const auto& [name, pitch] : {std::pair<std::string, double>{"shoulder_lift_joint", pitch_lift},
+                                      {"wrist_2_joint", pitch_wrist}}) {
+      sd::Joint<double>& j = model.joints[model.jointBody(name)];
+      j.type = sd::JointType::Helical;
+      j.pitch = pitch;
+    }
+    model.finalize();
+    return model;
+  };
+  const sd::Model<double> screws = with_screws(0.05, -0.2), flat = with_screws(0.0, 0.0);
+  const sd::Model<Quad> screws_q = screws.cast<Quad>();
+  sd::Data<double> data(screws), data_flat(flat), data_ur5(ur5);
+  sd::RefinementWorkspace<double> ws(screws);
+  std::mt19937 rng(31);
+  double rnea = 0, crba = 0, aba = 0, refined = 0, fd = 0, revolute = 0;
+  for (int s = 0; s < 50; ++s) {
+    const State x = random_state(screws, rng);
+    const VectorXd tau = sd_test::random_vector(screws.nv, rng, 20.0);
+    const sd::VectorX<Quad> q = sd::to_quad(x.q), qd = sd::to_quad(x.qd), qdd = sd::to_quad(x.qdd);
+    rnea = std::max(rnea, sd::relative_error_to(sd::rnea(screws, data, x.q, x.qd, x.qdd),
+                                                ref::inverse_dynamics(screws_q, q, qd, qdd)));
+    crba = std::max(crba, sd::relative_error_to(sd::crba(screws, data, x.q), ref::mass_matrix(screws_q, q)));
+    const VectorXd qdd_aba = sd::aba(screws, data, x.q, x.qd, tau);
+    aba = std::max(aba, relative_error(VectorXd(sd::rnea(screws, data, x.q, x.qd, qdd_aba)), tau));
+    const VectorXd qdd_refined = sd::aba_refined(screws, data, ws, x.q, x.qd, tau);
+    refined = std::max(refined, relative_error(VectorXd(sd::rnea(screws, data, x.q, x.qd, qdd_refined)), tau));
+    const VectorXd qdd_fd = sd::forward_dynamics(screws, data, x.q, x.qd, tau);
+    fd = std::max(fd, relative_error(VectorXd(sd::rnea(screws, data, x.q, x.qd, qdd_fd)), tau));
+    revolute = std::max({revolute,
+                         relative_error(VectorXd(sd::rnea(flat, data_flat, x.q, x.qd, x.qdd)),
+                                        VectorXd(sd::rnea(ur5, data_ur5, x.q, x.qd, x.qdd))),
+                         relative_error(Eigen::MatrixXd(sd::crba(flat, data_flat, x.q)),
+                                        Eigen::MatrixXd(sd::crba(ur5, data_ur5, x.q))),
+                         relative_error(VectorXd(sd::aba(flat, data_flat, x.q, x.qd, tau)),
+                                        VectorXd(sd::aba(ur5, data_ur5, x.q, x.qd, tau)))});
+  }
+  std::printf("[helical] RNEA %.2g CRBA %.2g (float128); ID(FD) ABA %.2g refined %.2g CRBA %.2g; pitch 0 %.2g\n", rnea,
+              crba, aba, refined, fd, revolute);
+  EXPECT_LE(rnea, kReference);
+  EXPECT_LE(crba, kReference);
+  EXPECT_LE(aba, kIdentity);
+  EXPECT_LE(refined, kIdentity);
+  EXPECT_LE(fd, kIdentity);
+  EXPECT_LE(revolute, kEquivalent);
 }

@@ -47,6 +47,13 @@ std::vector<sd::Joint<Quad>> joints() {
     planar.nq = planar.nv = 3;
     out.push_back(planar);
   }
+  for (const V3& axis : {V3(V3::UnitZ()), tilted}) {  // a screw, pitch 0.3 m/rad
+    sd::Joint<Quad> helical;
+    helical.type = sd::JointType::Helical;
+    helical.axis = axis;
+    helical.pitch = Quad("0.3");
+    out.push_back(helical);
+  }
   for (sd::Joint<Quad>& j : out) j.update_model();
   return out;
 }

@@ -40,7 +40,8 @@ Mat3<S> quaternion_rotation(const S& w, const S& x, const S& y, const S& z) {
 ///   revolute   X_J = rot(E(a, q)),
 ///   prismatic  X_J = xlt(q a),
 ///   free       X_J = rot(E) xlt(p), q = (p; quaternion x y z w), E = Rᵀ of the quaternion,
-///   planar     X_J = rot(E(n, ψ)) xlt(x e₁ + y e₂), q = (x, y, ψ).
+///   planar     X_J = rot(E(n, ψ)) xlt(x e₁ + y e₂), q = (x, y, ψ),
+///   helical    X_J = rot(E(a, q)) xlt(h q a), h the pitch.
 template <class S>
 Mat6<S> joint_transform(const Joint<S>& j, const VectorArg<S>& q) {
   switch (j.type) {
@@ -48,18 +49,20 @@ Mat6<S> joint_transform(const Joint<S>& j, const VectorArg<S>& q) {
     case JointType::Prismatic: return xlt<S>(q[0] * j.axis);
     case JointType::Free: return plucker(quaternion_rotation(q[6], q[3], q[4], q[5]), Vec3<S>(q[0], q[1], q[2]));
     case JointType::Planar: return plucker(axis_rotation<S>(j.axis, q[2]), Vec3<S>(q[0] * j.plane_x + q[1] * j.plane_y));
+    case JointType::Helical: return plucker(axis_rotation<S>(j.axis, q[0]), Vec3<S>(j.pitch * q[0] * j.axis));
   }
   throw std::invalid_argument("reference: unknown joint type");
 }
 
 /// S of one joint, 6 × n_v, constant in joint coordinates (RBDA Table 4.1): (a; 0) revolute,
-/// (0; a) prismatic, 1 (q̇ = (ω; v) in body coordinates) free.
+/// (0; a) prismatic, 1 (q̇ = (ω; v) in body coordinates) free, (a; h a) helical.
 template <class S>
 Mat6X<S> motion_subspace(const Joint<S>& j) {
   switch (j.type) {
     case JointType::Revolute: return (Mat6X<S>(6, 1) << j.axis, Vec3<S>::Zero()).finished();
     case JointType::Prismatic: return (Mat6X<S>(6, 1) << Vec3<S>::Zero(), j.axis).finished();
     case JointType::Free: return Mat6X<S>(Mat6<S>::Identity());
+    case JointType::Helical: return (Mat6X<S>(6, 1) << j.axis, j.pitch * j.axis).finished();
     case JointType::Planar:  // S varies with q: the reference checks it as its elementary joints
       throw std::invalid_argument("reference: a planar joint is checked as two prismatic joints and a revolute one");
   }

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "spatial_dynamics/model/joints/free.hpp"
+#include "spatial_dynamics/model/joints/helical.hpp"
 #include "spatial_dynamics/model/joints/planar.hpp"
 #include "spatial_dynamics/model/joints/prismatic.hpp"
 #include "spatial_dynamics/model/joints/prismatic_axis.hpp"
@@ -23,12 +24,14 @@ enum class JointType {
   Prismatic,  // 1 DoF, translation along `axis`
   Free,       // 6 DoF: the floating root or a URDF floating joint, q = (x y z qx qy qz qw), q̇ = (ω; v) in the body frame
   Planar,     // 3 DoF, q = (x, y, yaw): translation along plane_x and plane_y, rotation about `axis` (the normal)
+  Helical,    // 1 DoF, a screw: rotation θ about `axis` and translation pitch · θ along it
 };
 
 template <class S>
 using JointModel = std::variant<RevoluteAxisJoint<S, 0>, RevoluteAxisJoint<S, 1>, RevoluteAxisJoint<S, 2>,
                                 RevoluteJoint<S>, PrismaticAxisJoint<S, 0>, PrismaticAxisJoint<S, 1>,
-                                PrismaticAxisJoint<S, 2>, PrismaticJoint<S>, FreeJoint<S>, PlanarJoint<S>>;
+                                PrismaticAxisJoint<S, 2>, PrismaticJoint<S>, FreeJoint<S>, PlanarJoint<S>,
+                                HelicalJoint<S>>;
 
 /// The joint type of a kind, unit axis (the plane's normal for a planar joint), for a planar
 /// joint its in-plane axes and for a screw joint its pitch; an axis along +x, +y or +z takes the
@@ -36,7 +39,6 @@ using JointModel = std::variant<RevoluteAxisJoint<S, 0>, RevoluteAxisJoint<S, 1>
 template <class S>
 JointModel<S> make_joint_model(JointType type, const Vector3<S>& axis, const Vector3<S>& plane_x,
                                const Vector3<S>& plane_y, const S& pitch) {
-  static_cast<void>(pitch);
   const int k = axis == Vector3<S>::UnitX() ? 0 : axis == Vector3<S>::UnitY() ? 1 : axis == Vector3<S>::UnitZ() ? 2 : -1;
   switch (type) {
     case JointType::Revolute:
@@ -51,6 +53,7 @@ JointModel<S> make_joint_model(JointType type, const Vector3<S>& axis, const Vec
       return PrismaticJoint<S>{Vec3<S>(axis)};
     case JointType::Free: return FreeJoint<S>();
     case JointType::Planar: return PlanarJoint<S>{Vec3<S>(axis), Vec3<S>(plane_x), Vec3<S>(plane_y)};
+    case JointType::Helical: return HelicalJoint<S>{Vec3<S>(axis), pitch};
   }
   __builtin_unreachable();  // type holds one of the enumerators above
 }
