@@ -49,10 +49,13 @@ void aba_velocity_pass(const Model<S>& model, Data<S>& data, const ConstVectorRe
   data.v[0] = MotionVector<S>::Zero();
   if (split_gravity) gravity_split_start(model, data);
   for (int i = 1; i < model.nbodies(); ++i) {
-    body_up_transform(model, data, i, q.data(), data.X_up[i]);
+    const BodyJoint<S> J(model, data, i, q.data(), qd.data());
+    J.visit([&](const auto& joint) SD_INLINE_LAMBDA {
+      const PluckerTransform<S>& X = data.X_up[i] = joint.transform(J.X_tree, J.q, J.s, J.c, J.label);
+      data.v[i] = X.apply(data.v[model.parent[i]]) + joint.motion(J.qd, J.s, J.c);
+      data.c[i] = joint.velocity_product(data.v[i], J.qd, J.s, J.c);
+    });
     if (split_gravity) gravity_split_outward(model, data, i);
-    data.v[i] = data.X_up[i].apply(data.v[model.parent[i]]) + body_joint_motion(model, data, i, qd.data());
-    data.c[i] = body_velocity_product(model, data, i, data.v[i], qd.data());
     const RigidInertia<S>& I = model.inertia[i];
     data.IA[i] = ArticulatedInertia<S>(I);
     data.f[i] = I.biasForce(data.v[i]);

@@ -19,7 +19,7 @@ namespace detail {
 /// joints (M = Gᵀ M_free G, M zeroed first) every entry accumulates k_j k_col Sⱼᵀ F instead, and
 /// its mirror too unless it is the own block's diagonal.
 template <class S>
-SD_INLINE void store_mass_entries(const Model<S>& model, Data<S>& data, int j, const ForceVector<S>& F,
+SD_INLINE void set_mass_entries(const Model<S>& model, Data<S>& data, int j, const ForceVector<S>& F,
                                   Eigen::Index col, const S& k_col, int first_row, bool ancestor) {
   const Joint<S>& joint = model.joints[j];
   S entries[6];
@@ -57,10 +57,10 @@ void crba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q)
       const Eigen::Index col = joint.idx_v + k;
       const S k_col = coupling_multiplier(joint);
       ForceVector<S> F = data.Ic[i] * body_subspace_column(model, data, i, k);  // F = Iᶜ_i S_i
-      store_mass_entries(model, data, i, F, col, k_col, k, false);                    // M_ii = Sᵢᵀ F
+      set_mass_entries(model, data, i, F, col, k_col, k, false);                    // M_ii = Sᵢᵀ F
       for (int j = i; model.parent[j] > 0; j = model.parent[j]) {
         F = data.X_up[j].applyInverse(F);                                        // F = ^jX_λᵀ F
-        store_mass_entries(model, data, model.parent[j], F, col, k_col, 0, true);    // M_λi = S_λᵀ F
+        set_mass_entries(model, data, model.parent[j], F, col, k_col, 0, true);    // M_λi = S_λᵀ F
       }
     }
   }

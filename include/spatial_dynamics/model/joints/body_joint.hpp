@@ -40,20 +40,6 @@ SD_INLINE void joint_up_transform(const Model<S>& model, int i, const S* q, Pluc
 
 // ---- any joint, through its type (model/joints/); s and c are its angle's sine and cosine ----
 
-/// S q̇; `qd` points at the joint's first velocity coordinate.
-template <class S>
-SD_INLINE MotionVector<S> joint_motion(const Joint<S>& j, const S& s, const S& c, const S* qd) {
-  return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA { return joint.motion(qd, s, c); });
-}
-
-/// c_J = S̊ q̇, the joint's own velocity-product acceleration (zero where S is constant).
-template <class S>
-SD_INLINE MotionVector<S> joint_bias(const Joint<S>& j, const S& s, const S& c, const S* qd) {
-  return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA {
-    return joint.velocity_product(MotionVector<S>::Zero(), qd, s, c);  // c_J + 0 × S q̇
-  });
-}
-
 /// Column k of the motion subspace S.
 template <class S>
 inline MotionVector<S> joint_subspace_column(const Joint<S>& j, const S& s, const S& c, int k) {
@@ -113,7 +99,7 @@ SD_INLINE void joint_sines_and_cosines(const Model<S>& model, Data<S>& data, con
 
 /// Body i's joint at a state, for one visit of its type per body (visit): the joint's coordinates
 /// in q, q̇ and q̈ (pointers into them, or for a coupled joint k q_master + offset, k q̇_master and
-/// k q̈_master held here), its angle's sine and cosine (joint_sines_and_cosines, called before),
+/// k q̈_master held here; a vector not given is not read), its angle's sine and cosine (joint_sines_and_cosines, called before),
 /// its tree transform and its label for error messages.
 template <class S>
 struct BodyJoint {
@@ -131,14 +117,14 @@ struct BodyJoint {
         label{model.joint_names[i], model.joints[i].idx_q},
         s(data.joint_sin[i]),
         c(data.joint_cos[i]) {
-    const S k = joint.mimic.multiplier;
     if (!joint.coupled) {
-      q = q_all + joint.idx_q;
+      q = q_all ? q_all + joint.idx_q : nullptr;
       qd = qd_all ? qd_all + joint.idx_v : nullptr;
       qdd = qdd_all ? qdd_all + joint.idx_v : nullptr;
       return;
     }
-    own_q[0] = k * q_all[joint.idx_q] + joint.mimic.offset;
+    const S k = joint.mimic.multiplier;
+    own_q[0] = q_all ? k * q_all[joint.idx_q] + joint.mimic.offset : S(0);
     own_qd[0] = qd_all ? k * qd_all[joint.idx_v] : S(0);
     own_qdd[0] = qdd_all ? k * qdd_all[joint.idx_v] : S(0);
     q = own_q;
@@ -161,37 +147,11 @@ SD_INLINE void body_up_transform(const Model<S>& model, const Data<S>& data, int
   J.visit([&](const auto& joint) SD_INLINE_LAMBDA { X = joint.transform(J.X_tree, J.q, J.s, J.c, J.label); });
 }
 
-/// Body i's joint rates (q̇ or q̈) from the whole vector: a pointer into it, or for a coupled joint
-/// k q̇_master written to `own` (q̇ = k q̇_master).
-template <class S>
-SD_INLINE const S* body_joint_rates(const Joint<S>& j, const S* qd, S& own) {
-  if (!j.coupled) return qd + j.idx_v;
-  own = j.mimic.multiplier * qd[j.idx_v];
-  return &own;
-}
-
 /// S q̇ (or S q̈) of body i's joint from the whole velocity (acceleration) vector.
 template <class S>
 SD_INLINE MotionVector<S> body_joint_motion(const Model<S>& model, const Data<S>& data, int i, const S* qd) {
-  S own;
-  return joint_motion(model.joints[i], data.joint_sin[i], data.joint_cos[i], body_joint_rates(model.joints[i], qd, own));
-}
-
-/// c_J + v × S q̇ of body i's joint (RBDA eq. 5.7's velocity-product term) for the body's velocity v.
-template <class S>
-SD_INLINE MotionVector<S> body_velocity_product(const Model<S>& model, const Data<S>& data, int i,
-                                                const MotionVector<S>& v, const S* qd) {
-  S own;
-  const S* rates = body_joint_rates(model.joints[i], qd, own);
-  return visit_joint(model.joints[i], [&](const auto& joint) SD_INLINE_LAMBDA {
-    return joint.velocity_product(v, rates, data.joint_sin[i], data.joint_cos[i]);
-  });
-}
-
-/// c_J of body i's joint from the whole velocity vector.
-template <class S>
-SD_INLINE MotionVector<S> body_joint_bias(const Model<S>& model, const Data<S>& data, int i, const S* qd) {
-  return body_velocity_product(model, data, i, MotionVector<S>::Zero(), qd);
+  const BodyJoint<S> J(model, data, i, nullptr, qd);
+  return J.visit([&](const auto& joint) SD_INLINE_LAMBDA { return joint.motion(J.qd, J.s, J.c); });
 }
 
 /// Column k of body i's S.
