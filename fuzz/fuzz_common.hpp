@@ -165,12 +165,12 @@ inline void run_algorithms(const sd::Model<double>& model, sd::Data<double>& dat
   result_or_error("forward_kinematics", [&] {
     sd::forward_kinematics(model, data, s.q, s.qd);
     for (int i = 0; i < model.nbodies(); ++i) {
-      require_finite(data.X_base[i].E, "forward_kinematics: a body rotation");
-      require_finite(data.X_base[i].r, "forward_kinematics: a body position");
+      require_finite(data.X_base[i].E.eigen(), "forward_kinematics: a body rotation");
+      require_finite(data.X_base[i].r.eigen(), "forward_kinematics: a body position");
       require_finite(data.v[i].toVector(), "forward_kinematics: a body velocity");
     }
     for (std::size_t k = 0; k < model.frames.size(); ++k)
-      require_finite(data.X_frame_base[k].r, "forward_kinematics: a frame position");
+      require_finite(data.X_frame_base[k].r.eigen(), "forward_kinematics: a frame position");
   });
   if (!model.frames.empty()) {
     const int frame = static_cast<int>(rng() % model.frames.size());

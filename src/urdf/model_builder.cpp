@@ -183,40 +183,57 @@ class Builder {
                          "' (the joints above it form a cycle)");
   }
 
-  /// Adds `link` (whose frame is ^LX_B relative to `body`) and everything below it.
+  /// Adds `link` (whose frame is ^LX_B relative to `body`) and everything below it. The work of
+  /// each step is out of line (add_link, joint_frame, add_joint_body), so that a frame of this
+  /// recursion stays small: a chain of a thousand links recurses a thousand deep.
   void visit(const urdf::Link& link, int body, const Transform& X_link_body) {
-    if (model_.body_names[body].empty()) model_.body_names[body] = link.name;
-    model_.frames.push_back({link.name, body, X_link_body});
-    model_.inertia[body] += X_link_body.applyInverse(link_inertia(link));  // I_B += Xᵀ I_L X (eqs. 24, 26)
-    if (!model_.inertia[body].allFinite())  // finite inputs, but an overflow (m r² with a huge r)
-      throw ModelError("link '" + link.name + "': its inertia about the origin of link '" + model_.body_names[body] +
-                       "' is not finite (the inertial or joint origins are too large)");
+    add_link(link, body, X_link_body);
     for (const urdf::JointSharedPtr& joint : link.child_joints) {
       const urdf::LinkConstSharedPtr child = urdf_.getLink(joint->child_link_name);
       if (!child) throw ModelError("joint '" + joint->name + "': child link '" + joint->child_link_name + "' not found");
-      const Transform X_joint_body = transform_from_pose(joint->parent_to_joint_origin_transform) * X_link_body;
-      if (!X_joint_body.allFinite())
-        throw ModelError("joint '" + joint->name + "': its origin relative to link '" + model_.body_names[body] +
-                         "' is not finite (the joint origins are too large)");
-      switch (joint->type) {
-        case urdf::Joint::FIXED:
-          visit(*child, body, X_joint_body);  // merged: the child link becomes a frame of this body
-          break;
-        case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS:
-        case urdf::Joint::PRISMATIC:
-          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, movable_joint(*joint)));
-          break;
-        case urdf::Joint::FLOATING:
-          if (joint->mimic) throw ModelError("joint '" + joint->name + "': a floating joint cannot mimic another joint");
-          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, free_joint()));
-          break;
-        case urdf::Joint::PLANAR:
-          visit_moving(*joint, *child, add_body(body, joint->name, X_joint_body, planar_joint(*joint)));
-          break;
-        default:
-          throw ModelError("joint '" + joint->name + "': unknown joint type");
+      const Transform X_joint_body = joint_frame(*joint, body, X_link_body);
+      if (joint->type == urdf::Joint::FIXED) {
+        visit(*child, body, X_joint_body);  // merged: the child link becomes a frame of this body
+        continue;
       }
+      visit_moving(*joint, *child, add_joint_body(*joint, body, X_joint_body));
+    }
+  }
+
+  /// `link` as a frame of `body` at ^LX_B, and its inertia added to the body's: I_B += Xᵀ I_L X
+  /// (eqs. 24, 26).
+  __attribute__((noinline)) void add_link(const urdf::Link& link, int body, const Transform& X_link_body) {
+    if (model_.body_names[body].empty()) model_.body_names[body] = link.name;
+    model_.frames.push_back({link.name, body, X_link_body});
+    model_.inertia[body] += X_link_body.applyInverse(link_inertia(link));
+    if (!model_.inertia[body].allFinite())  // finite inputs, but an overflow (m r² with a huge r)
+      throw ModelError("link '" + link.name + "': its inertia about the origin of link '" + model_.body_names[body] +
+                       "' is not finite (the inertial or joint origins are too large)");
+  }
+
+  /// ^JX_B of `joint`, a child joint of a link at ^LX_B of `body`.
+  __attribute__((noinline)) Transform joint_frame(const urdf::Joint& joint, int body, const Transform& X_link_body) const {
+    const Transform X_joint_body = transform_from_pose(joint.parent_to_joint_origin_transform) * X_link_body;
+    if (!X_joint_body.allFinite())
+      throw ModelError("joint '" + joint.name + "': its origin relative to link '" + model_.body_names[body] +
+                       "' is not finite (the joint origins are too large)");
+    return X_joint_body;
+  }
+
+  /// The body that moving joint `joint` adds below `body`, its joint at ^JX_B.
+  __attribute__((noinline)) int add_joint_body(const urdf::Joint& joint, int body, const Transform& X_joint_body) {
+    switch (joint.type) {
+      case urdf::Joint::REVOLUTE:
+      case urdf::Joint::CONTINUOUS:
+      case urdf::Joint::PRISMATIC:
+        return add_body(body, joint.name, X_joint_body, movable_joint(joint));
+      case urdf::Joint::FLOATING:
+        if (joint.mimic) throw ModelError("joint '" + joint.name + "': a floating joint cannot mimic another joint");
+        return add_body(body, joint.name, X_joint_body, free_joint());
+      case urdf::Joint::PLANAR:
+        return add_body(body, joint.name, X_joint_body, planar_joint(joint));
+      default:
+        throw ModelError("joint '" + joint.name + "': unknown joint type");
     }
   }
 
