@@ -10,10 +10,10 @@
 // τ_g is the RNEA's with q̇ = q̈ = 0 (a_0 = −a_g): body i's acceleration is the pure linear
 // (0 ; −g_i), g_i gravity in its coordinates (g_i = E_i g_λ), its force I_i (0 ; −g_i) =
 // (g_i × h_i ; −m_i g_i) (h_i = m_i c_i), the forces summed inwards by Xᵀ and projected by Sᵀ.
-// The sums are the RNEA's to the letter, not the shorter form with subtree masses and first
+// The sums are the RNEA's to the letter, not the shorter sum with subtree masses and first
 // moments: that one takes the transforms' rotations for exactly orthogonal, which they are only to
 // double's precision, and on a long chain with general axes the difference outgrows the rounding.
-// The wide 3-vectors and their operations are spatial/number/wide_vector3.hpp's (packed where the CPU has it).
+// The wide 3-vectors' products with S are spatial/number/wide_vec3.hpp's (packed where the CPU has them).
 #pragma once
 
 #include <type_traits>
@@ -22,7 +22,7 @@
 #include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
-#include "spatial_dynamics/spatial/number/wide_vector3.hpp"
+#include "spatial_dynamics/spatial/number/wide_vec3.hpp"
 
 namespace spatial_dynamics {
 namespace detail {
@@ -42,21 +42,18 @@ SD_INLINE bool splits_gravity(const Model<S>& model) {
 /// Starts the split: the base's gravity a_g.
 template <class S>
 SD_INLINE void gravity_split_start(const Model<S>& model, Data<S>& data) {
-  using Wide = wide3::Form<S>;
-  Wide::store(Wide::from(model.gravity), data.gravity_split[0].gravity);
+  using W = WiderScalar<S>;
+  data.gravity_split[0].gravity = Vec3<W>(W(model.gravity[0]), W(model.gravity[1]), W(model.gravity[2]));
 }
 
 /// Body i on the way out: g_i = E_i g_λ (E_i of data.X_up[i]) and its own gravity force
 /// (g_i × h_i ; −m_i g_i), where the sum over its subtree starts.
 template <class S>
 SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i) {
-  using Wide = wide3::Form<S>;
   auto& body = data.gravity_split[i];
-  const typename Wide::Vector g =
-      Wide::rotation(data.X_up[i].E) * Wide::load(data.gravity_split[model.parent[i]].gravity);
-  Wide::store(g, body.gravity);
-  Wide::store(wide3::cross(g, model.inertia[i].first_moment), body.moment);
-  Wide::store(wide3::scale(S(-model.inertia[i].mass), g), body.force);
+  body.gravity = data.X_up[i].E * data.gravity_split[model.parent[i]].gravity;  // g_i = E_i g_λ
+  body.moment = cross(body.gravity, model.inertia[i].first_moment);              // g_i × h_i
+  body.force = S(-model.inertia[i].mass) * body.gravity;                         // −m_i g_i
 }
 
 /// Body i on the way in, its subtree's force complete: τ − Sᵀ f for its joint into
@@ -64,22 +61,17 @@ SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i
 template <class S>
 SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau) {
   using W = WiderScalar<S>;
-  using Wide = wide3::Form<S>;
   const Joint<S>& j = model.joints[i];
   const auto& body = data.gravity_split[i];
-  const typename Wide::Vector n = Wide::load(body.moment), f = Wide::load(body.force);
-  W projected[6], n_lanes[3], f_lanes[3];  // Sᵀ f, in W
-  Wide::lanes(n, n_lanes);
-  Wide::lanes(f, f_lanes);
-  joint_project(j, data.joint_sin[i], data.joint_cos[i], n_lanes, f_lanes, projected);
+  W projected[6];  // Sᵀ f, in W
+  joint_project(j, data.joint_sin[i], data.joint_cos[i], body.moment, body.force, projected);
   for (int k = 0; k < j.nv; ++k) data.tau_less_gravity[j.idx_v + k] = S(W(tau[j.idx_v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const auto Et = Wide::transposed_rotation(data.X_up[i].E);
-  const typename Wide::Vector Et_n = Et * n, Et_f = Et * f;
-  auto& parent = data.gravity_split[lambda];
-  Wide::store(Wide::load(parent.moment) + (Et_n + wide3::cross(data.X_up[i].r, Et_f)), parent.moment);
-  Wide::store(Wide::load(parent.force) + Et_f, parent.force);
+  const Mat3<S> Et = data.X_up[i].E.transpose();
+  const Vec3<W> Et_f = Et * body.force;
+  data.gravity_split[lambda].moment += Et * body.moment + cross(data.X_up[i].r, Et_f);
+  data.gravity_split[lambda].force += Et_f;
 }
 
 }  // namespace detail

@@ -47,7 +47,7 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   // τ_i = Sᵢᵀ f_i,  f_λ += ^iX_λᵀ f_i  (eqs. 5.10–5.11)
   if (model.has_coupled_joints) data.tau.setZero();
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    store_joint_force(model, data, i, data.f[i], data.tau.data(), model.has_coupled_joints);
+    write_joint_torque(model, data, i, data.f[i], data.tau.data(), model.has_coupled_joints);
     if (model.parent[i] > 0) data.f[model.parent[i]] += data.X_up[i].applyInverse(data.f[i]);
   }
   if (model.has_armature)  // + armature ⊙ q̈

@@ -13,7 +13,6 @@
 #include "spatial_dynamics/spatial/motion_vector.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
-#include "spatial_dynamics/spatial/number/wide_vector3.hpp"
 
 namespace spatial_dynamics {
 
@@ -43,7 +42,7 @@ struct Data {
   // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
   // subtree rooted at the body; entry 0 holds the base's gravity. Then τ − τ_g(q) rounded to S.
   struct GravitySplitBody {
-    WideVector3Storage<S> gravity, moment, force;
+    Vec3<WiderScalar<S>> gravity, moment, force;
   };
   std::vector<GravitySplitBody> gravity_split;
   VectorX<S> tau_less_gravity;

@@ -12,7 +12,8 @@
 #include <type_traits>
 
 #include "spatial_dynamics/spatial/eigen_types.hpp"
-#include "spatial_dynamics/spatial/number/packed3.hpp"
+#include "spatial_dynamics/spatial/number/double_double.hpp"
+#include "spatial_dynamics/spatial/number/packed3_double_double.hpp"
 
 namespace spatial_dynamics {
 
@@ -28,6 +29,11 @@ struct Vec3Lanes {
   using pointer = S*;
   using const_pointer = const S*;
   S x[3];
+  SD_INLINE void set(const S& a, const S& b, const S& c) {
+    x[0] = a;
+    x[1] = b;
+    x[2] = c;
+  }
   SD_INLINE S get(int k) const { return x[k]; }
   SD_INLINE S& ref(int k) { return x[k]; }
   SD_INLINE const S* ptr() const { return x; }
@@ -39,10 +45,35 @@ struct Vec3Lanes<double> {
   typedef AliasingDouble* pointer;
   typedef const AliasingDouble* const_pointer;
   Double4 x;
+  SD_INLINE void set(double a, double b, double c) { x = Double4{a, b, c, 0.0}; }
   SD_INLINE double get(int k) const { return x[k]; }
   SD_INLINE AliasingDouble& ref(int k) { return reinterpret_cast<AliasingDouble*>(&x)[k]; }
   SD_INLINE const AliasingDouble* ptr() const { return reinterpret_cast<const AliasingDouble*>(&x); }
   SD_INLINE AliasingDouble* ptr() { return reinterpret_cast<AliasingDouble*>(&x); }
+};
+/// For double-double (the gravity split's and the refinement's wider type): the high and the
+/// low parts, each as double's four lanes; a coordinate is written as its two parts.
+template <>
+struct Vec3Lanes<DoubleDouble> {
+  struct reference {
+    Vec3Lanes& v;
+    int k;
+    SD_INLINE operator DoubleDouble() const { return v.get(k); }  // NOLINT: reads like a DoubleDouble&
+    SD_INLINE reference& operator=(const DoubleDouble& y) {
+      v.hi[k] = y.hi;
+      v.lo[k] = y.lo;
+      return *this;
+    }
+  };
+  typedef void* pointer;  // no contiguous coordinates: data() is not defined
+  typedef const void* const_pointer;
+  Double4 hi, lo;
+  SD_INLINE void set(const DoubleDouble& a, const DoubleDouble& b, const DoubleDouble& c) {
+    hi = Double4{a.hi, b.hi, c.hi, 0.0};
+    lo = Double4{a.lo, b.lo, c.lo, 0.0};
+  }
+  SD_INLINE DoubleDouble get(int k) const { return DoubleDouble(hi[k], lo[k]); }
+  SD_INLINE reference ref(int k) { return {*this, k}; }
 };
 }  // namespace detail
 
@@ -50,15 +81,7 @@ template <class S>
 struct Vec3 {
   detail::Vec3Lanes<S> lanes;
 
-  SD_INLINE Vec3(const S& x, const S& y, const S& z) {
-    if constexpr (std::is_same<S, double>::value) {
-      lanes.x = detail::Double4{x, y, z, 0.0};
-    } else {
-      lanes.x[0] = x;
-      lanes.x[1] = y;
-      lanes.x[2] = z;
-    }
-  }
+  SD_INLINE Vec3(const S& x, const S& y, const S& z) { lanes.set(x, y, z); }
   SD_INLINE Vec3() : Vec3(S(0), S(0), S(0)) {}
   template <class Derived, class = std::enable_if_t<Derived::SizeAtCompileTime == 3>>
   SD_INLINE Vec3(const Eigen::MatrixBase<Derived>& v) : Vec3(S(v(0)), S(v(1)), S(v(2))) {}  // NOLINT: from Eigen
@@ -108,6 +131,7 @@ struct Vec3 {
 };
 
 static_assert(sizeof(Vec3<double>) == 32 && alignof(Vec3<double>) == 32, "one layout in every build");
+static_assert(sizeof(Vec3<DoubleDouble>) == 64, "one layout in every build");
 
 #ifdef SD_PACKED3
 namespace packed3 {
@@ -115,6 +139,13 @@ SD_INLINE Packed3 load(const Vec3<double>& v) { return v.lanes.x; }
 SD_INLINE Vec3<double> vec3(Packed3 x) {
   Vec3<double> v;
   v.lanes.x = x;
+  return v;
+}
+SD_INLINE PackedDoubleDouble load(const Vec3<DoubleDouble>& v) { return {v.lanes.hi, v.lanes.lo}; }
+SD_INLINE Vec3<DoubleDouble> vec3(const PackedDoubleDouble& x) {
+  Vec3<DoubleDouble> v;
+  v.lanes.hi = x.hi;
+  v.lanes.lo = x.lo;
   return v;
 }
 }  // namespace packed3
@@ -129,23 +160,30 @@ SD_INLINE Vec3<double> vec3(Packed3 x) {
     using namespace packed3;                                           \
     return expression;                                                 \
   }
+/// The same for double-double's sums, whose packed lanes give the scalar's numbers exactly.
+#define SD_VEC3_PACKED_SUM(S, expression)                                                   \
+  if constexpr (std::is_same<S, double>::value || std::is_same<S, DoubleDouble>::value) { \
+    using namespace packed3;                                                              \
+    return expression;                                                                    \
+  }
 #else
 #define SD_VEC3_PACKED(S, expression)
+#define SD_VEC3_PACKED_SUM(S, expression)
 #endif
 
 template <class S>
 SD_INLINE Vec3<S> operator+(const Vec3<S>& a, const Vec3<S>& b) {
-  SD_VEC3_PACKED(S, vec3(load(a) + load(b)))
+  SD_VEC3_PACKED_SUM(S, vec3(load(a) + load(b)))
   return Vec3<S>(a[0] + b[0], a[1] + b[1], a[2] + b[2]);
 }
 template <class S>
 SD_INLINE Vec3<S> operator-(const Vec3<S>& a, const Vec3<S>& b) {
-  SD_VEC3_PACKED(S, vec3(load(a) - load(b)))
+  SD_VEC3_PACKED_SUM(S, vec3(load(a) - load(b)))
   return Vec3<S>(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 }
 template <class S>
 SD_INLINE Vec3<S> operator-(const Vec3<S>& a) {
-  SD_VEC3_PACKED(S, vec3(-load(a)))
+  SD_VEC3_PACKED_SUM(S, vec3(-load(a)))
   return Vec3<S>(-a[0], -a[1], -a[2]);
 }
 template <class S>
@@ -188,6 +226,7 @@ SD_INLINE bool operator==(const Vec3<double>& a, const Vec3<double>& b) { return
 SD_INLINE bool operator!=(const Vec3<double>& a, const Vec3<double>& b) { return operator!=<double>(a, b); }
 
 #undef SD_VEC3_PACKED
+#undef SD_VEC3_PACKED_SUM
 
 template <class S>
 SD_INLINE S Vec3<S>::dot(const Vec3& o) const {

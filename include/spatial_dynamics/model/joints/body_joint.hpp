@@ -46,10 +46,10 @@ inline MotionVector<S> joint_subspace_column(const Joint<S>& j, const S& s, cons
   return visit_joint(j, [&](const auto& joint) SD_INLINE_LAMBDA { return joint.column(k, s, c); });
 }
 
-/// Sᵀ (n ; f) written to out[0 .. nv), column by column; n, f and out are 3-arrays of any scalar
-/// (a wider one too).
+/// Sᵀ (n ; f) written to out[0 .. nv), column by column, for n and f in any scalar (a wider one
+/// too).
 template <class S, class T>
-SD_INLINE void joint_project(const Joint<S>& j, const S& s, const S& c, const T* n, const T* f, T* out) {
+SD_INLINE void joint_project(const Joint<S>& j, const S& s, const S& c, const Vec3<T>& n, const Vec3<T>& f, T* out) {
   for (int k = 0; k < j.nv; ++k) {
     const MotionVector<S> column = joint_subspace_column(j, s, c, k);
     T sum = T(0);
@@ -170,7 +170,7 @@ SD_INLINE void body_joint_project(const Model<S>& model, const Data<S>& data, in
 /// zeroed first) τ += k Sᵀ f instead, k the coupling multiplier (1 for a joint of its own): by
 /// virtual power a coupled joint's force acts on its master's coordinate scaled by k.
 template <class S>
-SD_INLINE void store_joint_force(const Model<S>& model, const Data<S>& data, int i, const ForceVector<S>& f, S* tau,
+SD_INLINE void write_joint_torque(const Model<S>& model, const Data<S>& data, int i, const ForceVector<S>& f, S* tau,
                                  bool accumulate) {
   const Joint<S>& j = model.joints[i];
   if (!accumulate) {
