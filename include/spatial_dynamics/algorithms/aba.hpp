@@ -105,14 +105,25 @@ SD_INLINE ForceVector<S> articulated_inertia_step(const Model<S>& model, Data<S>
     }
     const int lambda = model.parent[i];
     if (lambda == 0) return ForceVector<S>::Zero();
-    ArticulatedInertia<S> Ia = IA;  // Iᵃ = Iᴬ − Σ_k U_k (U D⁻¹)_kᵀ
+    // Iᴬ_λ += Xᵀ Iᵃ X for Iᵃ = Iᴬ − U D⁻¹ Uᵀ, as Xᵀ Iᴬ X − W D⁻¹ Wᵀ with W = Xᵀ U: the same
+    // matrix, whose transform does not wait for D⁻¹; and Iᵃ c = Iᴬ c − U D⁻¹ Uᵀ c.
+    const PluckerTransform<S>& X = data.X_up[i];
+    ArticulatedInertia<S> XtIaX = X.applyInverse(IA);
+    ForceVector<S> Ia_c = IA * data.c[i];
+    std::array<ForceVector<S>, n> W;
+    for (int k = 0; k < n; ++k) W[k] = X.applyInverse(U[k]);
     for (int k = 0; k < n; ++k) {
-      ForceVector<S> U_D_inv_k = U[0] * D_inv(0, k);
-      for (int l = 1; l < n; ++l) U_D_inv_k += U[l] * D_inv(l, k);
-      Ia.subtractOuter(U[k], U_D_inv_k);
+      ForceVector<S> W_D_inv_k = W[0] * D_inv(0, k);
+      S D_inv_Ut_c_k = D_inv(0, k) * dot(data.c[i], U[0]);
+      for (int l = 1; l < n; ++l) {
+        W_D_inv_k += W[l] * D_inv(l, k);
+        D_inv_Ut_c_k += D_inv(l, k) * dot(data.c[i], U[l]);
+      }
+      XtIaX.subtractOuter(W[k], W_D_inv_k);
+      Ia_c -= U[k] * D_inv_Ut_c_k;
     }
-    data.X_up[i].applyInverseAdd(Ia, data.IA[lambda]);  // Iᴬ_λ += Xᵀ Iᵃ X
-    return Ia * data.c[i];
+    data.IA[lambda] += XtIaX;
+    return Ia_c;
   });
 }
 

@@ -27,7 +27,8 @@ struct Data {
                                             // without gravity where the ABA splits it off)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations c_J + v_i × S_i q̇_i (ABA)
   std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
-  std::vector<RigidInertia<S>> Ic;          // composite inertias Iᶜ (CRBA)
+  std::vector<RigidInertia<S>> Ic;          // composite inertias Iᶜ (CRBA: base axes, about the body's origin)
+  std::vector<std::array<MotionVector<S>, 6>> S_base;  // the columns of S in base axes (CRBA; first nv used)
   // Joints with an angle (revolute, planar): the bodies they move, and sin and cos of each
   // angle (0 and 1 for other bodies), all computed together before the passes (model/joints/body_joint.hpp).
   std::vector<int> angle_bodies;
@@ -72,6 +73,7 @@ struct Data {
         c(model.nbodies(), MotionVector<S>::Zero()),
         f(model.nbodies(), ForceVector<S>::Zero()),
         Ic(model.nbodies()),
+        S_base(model.nbodies()),
         joint_sin(model.nbodies(), S(0)),
         joint_cos(model.nbodies(), S(1)),
         IA(model.nbodies()),

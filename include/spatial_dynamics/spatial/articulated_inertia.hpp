@@ -15,6 +15,14 @@ struct ArticulatedInertia {
   Mat3<S> A, B, C;
 
   ArticulatedInertia() = default;
+  // Copied block by block: a whole-object copy of this size would be a string move (rep movs).
+  SD_INLINE ArticulatedInertia(const ArticulatedInertia& o) : A(o.A), B(o.B), C(o.C) {}
+  SD_INLINE ArticulatedInertia& operator=(const ArticulatedInertia& o) {
+    A = o.A;
+    B = o.B;
+    C = o.C;
+    return *this;
+  }
   ArticulatedInertia(const Mat3<S>& a, const Mat3<S>& b, const Mat3<S>& c) : A(a), B(b), C(c) {}
   explicit ArticulatedInertia(const Matrix6<S>& m)
       : A(Matrix3<S>(m.template topLeftCorner<3, 3>())),

@@ -40,6 +40,10 @@ struct ForceVector {
   SD_INLINE ForceVector operator-(const ForceVector& o) const { return {angular - o.angular, linear - o.linear}; }
   SD_INLINE ForceVector operator-() const { return {-angular, -linear}; }
   SD_INLINE ForceVector operator*(const S& k) const { return {angular * k, linear * k}; }
+
+  /// The same force with its moment about the point p (from the frame origin, same axes):
+  /// (n − p × f ; f) (eq. 12 with E = 1).
+  SD_INLINE ForceVector aboutPoint(const Vec3<S>& p) const { return {angular - cross(p, linear), linear}; }
 };
 
 template <class S>
@@ -49,7 +53,7 @@ ForceVector<S> operator*(const S& k, const ForceVector<S>& f) { return f * k; }
 /// (Featherstone 2010, eq. 7). Defined only between a motion and a force.
 template <class S>
 SD_INLINE S dot(const MotionVector<S>& m, const ForceVector<S>& f) {
-  return dot(m.angular, f.angular) + dot(m.linear, f.linear);
+  return dot_sum(m.angular, f.angular, m.linear, f.linear);
 }
 template <class S>
 SD_INLINE S dot(const ForceVector<S>& f, const MotionVector<S>& m) {

@@ -110,8 +110,26 @@ struct Mat3 {
   /// Copies the lower triangle into the upper one: exactly symmetric. (Whole columns are built
   /// and stored, so that a packed load of them forwards from the store.)
   SD_INLINE void symmetrize_from_lower() {
+#ifdef SD_PACKED3
+    if constexpr (std::is_same<S, double>::value) {
+      using namespace packed3;
+      const Packed3 c0 = load(column[0]), c1 = load(column[1]), c2 = load(column[2]);
+      column[1] = vec3(__builtin_shuffle(c0, c1, LaneIndex{1, 5, 6, 7}));
+      column[2] = vec3(__builtin_shuffle(__builtin_shuffle(c0, c1, LaneIndex{2, 6, 2, 6}), c2, LaneIndex{0, 1, 6, 7}));
+      return;
+    }
+#endif
     column[1] = Vec3<S>(column[0][1], column[1][1], column[1][2]);
     column[2] = Vec3<S>(column[0][2], column[1][2], column[2][2]);
+  }
+  /// M r×: column k is M (r × e_k), e.g. r₂ c₁ − r₁ c₂ for k = 0.
+  SD_INLINE Mat3 timesSkew(const Vec3<S>& r) const {
+    return Mat3(column[1] * r[2] - column[2] * r[1], column[2] * r[0] - column[0] * r[2],
+                column[0] * r[1] - column[1] * r[0]);
+  }
+  /// r× M: column k is r × c_k.
+  SD_INLINE Mat3 skewTimes(const Vec3<S>& r) const {
+    return Mat3(cross(r, column[0]), cross(r, column[1]), cross(r, column[2]));
   }
   /// M + d 1
   SD_INLINE Mat3 plusDiagonal(const S& d) const {

@@ -57,56 +57,27 @@ struct PluckerTransform {
   }
 
   // ---- rigid inertias: I_B = X* I_A X^-1   (eq. 26) ---------------------------------------
-  // Shifting the reference point by r: h' = h − m r, Ī' = Ī_O + h×r× + r×h× − m r×r×,
-  // then rotating: h_B = E h', Ī_B = E Ī' Eᵀ. No division by the mass, so massless bodies work.
-  // With a×b× = b aᵀ − (a·b)1 the shift is symmetric rank-2 terms (shift_rotational_inertia).
-  RigidInertia<S> apply(const RigidInertia<S>& I) const {
-    const Mat3<S> shifted = shift_rotational_inertia(I.rotational_inertia, I.first_moment, I.mass, r, S(1));
-    return RigidInertia<S>(I.mass, E * (I.first_moment - r * I.mass), rotate_symmetric(E, shifted));
-  }
+  // The reference point moved to B's origin r, then the axes turned by E; no division by the
+  // mass, so massless bodies work.
+  SD_INLINE RigidInertia<S> apply(const RigidInertia<S>& I) const { return I.aboutPoint(r).rotated(E); }
   /// I_A = Xᵀ I_B X: the inverse of apply(RigidInertia).
   SD_INLINE RigidInertia<S> applyInverse(const RigidInertia<S>& I) const {
-    const Mat3<S> Et = E.transpose();
-    const Vec3<S> h = Et * I.first_moment;                     // first moment about B's origin, A axes
-    const Mat3<S> rotated = (Et * I.rotational_inertia) * E;  // Eᵀ Ī E (the shift reads its lower triangle)
-    return RigidInertia<S>(I.mass, h + r * I.mass, shift_rotational_inertia(rotated, h, I.mass, r, S(-1)));
+    return I.rotated(E.transpose()).aboutPoint(-r);
   }
-  /// out += Xᵀ I X (the CRBA's composite inertias, eq. 26 inverted).
+  /// out += Xᵀ I X (composite inertias, eq. 26 inverted).
   SD_INLINE void applyInverseAdd(const RigidInertia<S>& I, RigidInertia<S>& out) const { out += applyInverse(I); }
 
-  /// Ī + σ(h×r× + r×h×) − m r×r× = Ī + σ(r hᵀ + h rᵀ − 2(h·r)1) − m(r rᵀ − (r·r)1), its lower
-  /// triangle computed from Ī's and copied to the upper one (exactly symmetric).
-  static SD_INLINE Mat3<S> shift_rotational_inertia(const Mat3<S>& I, const Vec3<S>& h, const S& m, const Vec3<S>& r,
-                                                    const S& sigma) {
-    // m r is formed first, so a massless body far away gives 0, not 0 · ∞.
-    const Vec3<S> sh = h * sigma;
-    const Vec3<S> mr = r * m;
-    const S diagonal = dot(mr, r) - S(2) * dot(sh, r);
-    const Vec3<S> sh_less_mr = sh - mr;
-    Mat3<S> out;
-    for (int c = 0; c < 3; ++c)  // column c: I_c + r sh_c + (sh − mr) r_c, then + diagonal e_c
-      out.column[c] = I.column[c] + (r * sh[c] + sh_less_mr * r[c]);
-    out = out.plusDiagonal(diagonal);
-    out.symmetrize_from_lower();
-    return out;
-  }
-  /// R Ī Rᵀ for a symmetric Ī, its upper triangle copied from the lower so that it is exactly symmetric.
-  static SD_INLINE Mat3<S> rotate_symmetric(const Mat3<S>& R, const Mat3<S>& I) {
-    Mat3<S> out = (R * I) * R.transpose();
-    out.symmetrize_from_lower();
-    return out;
-  }
-
   /// Xᵀ Iᴬ X for an articulated inertia [A B; Bᵀ C] given in B coordinates: with A' = Eᵀ A E,
-  /// B' = Eᵀ B E and C' = Eᵀ C E, [A' − B'r× − (B'r×)ᵀ − r×C'r×,  B' + r×C' ;  ·,  C'].
+  /// B' = Eᵀ B E, C' = Eᵀ C E and G = B' + r×C', [A' − G r× + r×B'ᵀ,  G ;  Gᵀ,  C'].
+  /// Products with r× are cross products and sums of columns: column k of M r× is M (r × e_k).
   SD_INLINE ArticulatedInertia<S> applyInverse(const ArticulatedInertia<S>& Ia) const {
-    const Mat3<S> Et = E.transpose(), rx = Mat3<S>::Skew(r);
-    const Mat3<S> A = (Et * Ia.A) * E, B = (Et * Ia.B) * E, C = (Et * Ia.C) * E;
-    const Mat3<S> B_rx = B * rx, rx_C = rx * C;
-    ArticulatedInertia<S> out(A - B_rx - B_rx.transpose() - rx_C * rx, B + rx_C, C);
-    out.A.symmetrize_from_lower();  // symmetric blocks stay exactly symmetric
-    out.C.symmetrize_from_lower();
-    return out;
+    const Mat3<S> A = (Ia.A * E).transpose() * E;   // (A E)ᵀ E = Eᵀ A E (A symmetric)
+    const Mat3<S> C = (Ia.C * E).transpose() * E;
+    const Mat3<S> Bt = (Ia.B * E).transpose() * E;  // (B E)ᵀ E = B'ᵀ
+    const Mat3<S> Gt = Bt - C.timesSkew(r);         // Gᵀ = B'ᵀ − C' r× (C' symmetric)
+    const Mat3<S> G = Gt.transpose();
+    const Mat3<S> top_left = A - G.timesSkew(r) + Bt.skewTimes(r);
+    return ArticulatedInertia<S>(top_left, G, C);
   }
   /// out += Xᵀ Iᴬ X: the ABA's inward accumulation.
   SD_INLINE void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {

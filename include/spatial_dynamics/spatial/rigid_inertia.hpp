@@ -62,6 +62,28 @@ struct RigidInertia {
             w_cross_v * mass - cross(w, cross(first_moment, w))};
   }
 
+  /// The same body's inertia in axes turned by R (x ↦ R x): (m, R h, R Ī_O Rᵀ), Ī_O's
+  /// upper triangle copied from its lower one so that it stays exactly symmetric.
+  SD_INLINE RigidInertia rotated(const Mat3<S>& R) const {
+    Mat3<S> turned = R * (R * rotational_inertia).transpose();  // R (R Ī)ᵀ = R Ī Rᵀ, Ī symmetric
+    turned.symmetrize_from_lower();
+    return RigidInertia(mass, R * first_moment, turned);
+  }
+
+  /// The same body's inertia about the point p (from the frame origin, same axes) (eq. 26 with
+  /// E = 1): h − m p and Ī_O + h×p× + p×h× − m p×p× = Ī_O + p hᵀ + (h − m p) pᵀ + (m p·p − 2 h·p)1
+  /// (a×b× = b aᵀ − (a·b)1). m p is formed first, so a massless body far away gives 0, not 0 · ∞.
+  SD_INLINE RigidInertia aboutPoint(const Vec3<S>& p) const {
+    const Vec3<S> mp = p * mass;
+    const Vec3<S> h_less_mp = first_moment - mp;
+    Mat3<S> shifted;
+    for (int c = 0; c < 3; ++c)  // column c: Ī_c + p h_c + (h − m p) p_c
+      shifted.column[c] = rotational_inertia.column[c] + (p * first_moment[c] + h_less_mp * p[c]);
+    shifted = shifted.plusDiagonal(dot(mp, p) - S(2) * dot(first_moment, p));
+    shifted.symmetrize_from_lower();
+    return RigidInertia(mass, h_less_mp, shifted);
+  }
+
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
   RigidInertia& operator+=(const RigidInertia& o) {
     mass += o.mass;

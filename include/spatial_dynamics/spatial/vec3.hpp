@@ -153,23 +153,20 @@ SD_INLINE Vec3<DoubleDouble> vec3(const PackedDoubleDouble& x) {
 
 // ---- operations: packed for double where SD_PACKED3 is defined, coordinate by coordinate otherwise ----
 
-/// Applies op to the coordinates (or to the packed lanes for double where the build has them).
+/// Returns `expression` on the packed lanes where the build has them: for double, and with
+/// `with_double_double` for double-double's sums too, whose packed lanes give the scalar's numbers
+/// exactly. Otherwise the function goes on coordinate by coordinate.
 #ifdef SD_PACKED3
-#define SD_VEC3_PACKED(S, expression)                                  \
-  if constexpr (std::is_same<S, double>::value) {                      \
-    using namespace packed3;                                           \
-    return expression;                                                 \
-  }
-/// The same for double-double's sums, whose packed lanes give the scalar's numbers exactly.
-#define SD_VEC3_PACKED_SUM(S, expression)                                                   \
-  if constexpr (std::is_same<S, double>::value || std::is_same<S, DoubleDouble>::value) { \
-    using namespace packed3;                                                              \
-    return expression;                                                                    \
+#define SD_VEC3_PACKED_FOR(S, with_double_double, expression)                                                 \
+  if constexpr (std::is_same<S, double>::value || (with_double_double && std::is_same<S, DoubleDouble>::value)) { \
+    using namespace packed3;                                                                                 \
+    return expression;                                                                                       \
   }
 #else
-#define SD_VEC3_PACKED(S, expression)
-#define SD_VEC3_PACKED_SUM(S, expression)
+#define SD_VEC3_PACKED_FOR(S, with_double_double, expression)
 #endif
+#define SD_VEC3_PACKED(S, expression) SD_VEC3_PACKED_FOR(S, false, expression)
+#define SD_VEC3_PACKED_SUM(S, expression) SD_VEC3_PACKED_FOR(S, true, expression)
 
 template <class S>
 SD_INLINE Vec3<S> operator+(const Vec3<S>& a, const Vec3<S>& b) {
@@ -208,7 +205,14 @@ SD_INLINE Vec3<S> cross(const Vec3<S>& a, const Vec3<S>& b) {
 /// a · b
 template <class S>
 SD_INLINE S dot(const Vec3<S>& a, const Vec3<S>& b) {
+  SD_VEC3_PACKED(S, sum3(load(a) * load(b)))
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+/// a · b + c · d (the scalar product of two 6-vectors by their halves)
+template <class S>
+SD_INLINE S dot_sum(const Vec3<S>& a, const Vec3<S>& b, const Vec3<S>& c, const Vec3<S>& d) {
+  SD_VEC3_PACKED(S, sum3(load(a) * load(b) + load(c) * load(d)))
+  return dot(a, b) + dot(c, d);
 }
 template <class S>
 SD_INLINE bool operator==(const Vec3<S>& a, const Vec3<S>& b) {
@@ -227,6 +231,7 @@ SD_INLINE bool operator!=(const Vec3<double>& a, const Vec3<double>& b) { return
 
 #undef SD_VEC3_PACKED
 #undef SD_VEC3_PACKED_SUM
+#undef SD_VEC3_PACKED_FOR
 
 template <class S>
 SD_INLINE S Vec3<S>::dot(const Vec3& o) const {

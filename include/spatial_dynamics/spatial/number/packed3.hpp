@@ -42,6 +42,13 @@ SD_INLINE Packed3 yzx(Packed3 a) { return __builtin_shuffle(a, LaneIndex{1, 2, 0
 /// a × b = yzx(a ∘ yzx(b) − yzx(a) ∘ b).
 SD_INLINE Packed3 cross(Packed3 a, Packed3 b) { return yzx(a * yzx(b) - yzx(a) * b); }
 
+/// x₀ + x₁ + x₂, in that order.
+SD_INLINE double sum3(Packed3 x) {
+  const __m128d low = _mm256_castpd256_pd128(x);
+  const __m128d pair = _mm_add_sd(low, _mm_unpackhi_pd(low, low));
+  return _mm_cvtsd_f64(_mm_add_sd(pair, _mm256_extractf128_pd(x, 1)));
+}
+
 /// E x for E given by its columns c0, c1, c2: x₀ c0 + x₁ c1 + x₂ c2.
 SD_INLINE Packed3 mat_vec(Packed3 c0, Packed3 c1, Packed3 c2, Packed3 x) {
   return c0 * broadcast<0>(x) + c1 * broadcast<1>(x) + c2 * broadcast<2>(x);
