@@ -111,13 +111,17 @@ SD_INLINE ForceVector<S> articulated_inertia_step(const Model<S>& model, Data<S>
     ArticulatedInertia<S> XtIaX = X.applyInverse(IA);
     ForceVector<S> Ia_c = IA * data.c[i];
     std::array<ForceVector<S>, n> W;
-    for (int k = 0; k < n; ++k) W[k] = X.applyInverse(U[k]);
+    std::array<S, n> Ut_c;
+    for (int k = 0; k < n; ++k) {
+      W[k] = X.applyInverse(U[k]);
+      Ut_c[k] = dot(data.c[i], U[k]);
+    }
     for (int k = 0; k < n; ++k) {
       ForceVector<S> W_D_inv_k = W[0] * D_inv(0, k);
-      S D_inv_Ut_c_k = D_inv(0, k) * dot(data.c[i], U[0]);
+      S D_inv_Ut_c_k = D_inv(0, k) * Ut_c[0];
       for (int l = 1; l < n; ++l) {
         W_D_inv_k += W[l] * D_inv(l, k);
-        D_inv_Ut_c_k += D_inv(l, k) * dot(data.c[i], U[l]);
+        D_inv_Ut_c_k += D_inv(l, k) * Ut_c[l];
       }
       XtIaX.subtractOuter(W[k], W_D_inv_k);
       Ia_c -= U[k] * D_inv_Ut_c_k;
