@@ -52,26 +52,23 @@ template <class S>
 SD_INLINE void gravity_split_outward(const Model<S>& model, Data<S>& data, int i) {
   auto& body = data.gravity_split[i];
   body.gravity = data.X_up[i].E * data.gravity_split[model.parent[i]].gravity;  // g_i = E_i g_λ
-  body.moment = cross(body.gravity, model.inertia[i].first_moment);              // g_i × h_i
-  body.force = S(-model.inertia[i].mass) * body.gravity;                         // −m_i g_i
+  body.force.angular = cross(body.gravity, model.inertia[i].first_moment);      // g_i × h_i
+  body.force.linear = S(-model.inertia[i].mass) * body.gravity;                 // −m_i g_i
 }
 
 /// Body i on the way in, its subtree's force complete: τ − Sᵀ f for its joint into
-/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f) (eq. 12).
+/// data.tau_less_gravity (rounded once), then f_λ += Xᵀ f (eq. 12).
 template <class S>
 SD_INLINE void gravity_split_inward(const Model<S>& model, Data<S>& data, int i, const ConstVectorRef<S>& tau) {
   using W = WiderScalar<S>;
   const Joint<S>& j = model.joints[i];
   const auto& body = data.gravity_split[i];
   W projected[6];  // Sᵀ f, in W
-  joint_project(j, data.joint_sin[i], data.joint_cos[i], body.moment, body.force, projected);
+  joint_project(j, data.joint_sin[i], data.joint_cos[i], body.force.angular, body.force.linear, projected);
   for (int k = 0; k < j.nv; ++k) data.tau_less_gravity[j.idx_v + k] = S(W(tau[j.idx_v + k]) - projected[k]);
   const int lambda = model.parent[i];
   if (lambda == 0) return;
-  const Mat3<S> Et = data.X_up[i].E.transpose();
-  const Vec3<W> Et_f = Et * body.force;
-  data.gravity_split[lambda].moment += Et * body.moment + cross(data.X_up[i].r, Et_f);
-  data.gravity_split[lambda].force += Et_f;
+  data.gravity_split[lambda].force += data.X_up[i].applyInverse(body.force);
 }
 
 }  // namespace detail

@@ -43,7 +43,8 @@ struct Data {
   // gravitational acceleration in body coordinates and the gravity force (moment, force) of the
   // subtree rooted at the body; entry 0 holds the base's gravity. Then τ − τ_g(q) rounded to S.
   struct GravitySplitBody {
-    Vec3<WiderScalar<S>> gravity, moment, force;
+    Vec3<WiderScalar<S>> gravity;
+    ForceVector<WiderScalar<S>> force;
   };
   std::vector<GravitySplitBody> gravity_split;
   VectorX<S> tau_less_gravity;

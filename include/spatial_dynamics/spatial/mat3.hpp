@@ -87,6 +87,12 @@ struct Mat3 {
   }
   /// M N, column by column
   SD_INLINE Mat3 operator*(const Mat3& N) const { return Mat3(*this * N.column[0], *this * N.column[1], *this * N.column[2]); }
+  /// M Nᵀ: column c is Σ_k c_k N(c, k), N's entries broadcast (no transpose).
+  SD_INLINE Mat3 timesTransposed(const Mat3& N) const {
+    Mat3 out;
+    for (int c = 0; c < 3; ++c) out.column[c] = column[0] * N(c, 0) + column[1] * N(c, 1) + column[2] * N(c, 2);
+    return out;
+  }
   /// Mᵀ N
   SD_INLINE Mat3 transposeTimes(const Mat3& N) const {
     return Mat3(transposeTimes(N.column[0]), transposeTimes(N.column[1]), transposeTimes(N.column[2]));

@@ -49,10 +49,11 @@ struct PluckerTransform {
   SD_INLINE ForceVector<S> apply(const ForceVector<S>& f) const {
     return {E * (f.angular - cross(r, f.linear)), E * f.linear};
   }
-  /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f)
-  SD_INLINE ForceVector<S> applyInverse(const ForceVector<S>& f) const {
+  /// (X*)^-1 f = Xᵀ f = (Eᵀ n + r × Eᵀ f ; Eᵀ f); f in S or in S's wider type (the gravity split's).
+  template <class T>
+  SD_INLINE ForceVector<T> applyInverse(const ForceVector<T>& f) const {
     const Mat3<S> Et = E.transpose();
-    const Vec3<S> lin = Et * f.linear;
+    const Vec3<T> lin = Et * f.linear;
     return {Et * f.angular + cross(r, lin), lin};
   }
 
@@ -78,10 +79,6 @@ struct PluckerTransform {
     const Mat3<S> G = Gt.transpose();
     const Mat3<S> top_left = A - G.timesSkew(r) + Bt.skewTimes(r);
     return ArticulatedInertia<S>(top_left, G, C);
-  }
-  /// out += Xᵀ Iᴬ X: the ABA's inward accumulation.
-  SD_INLINE void applyInverseAdd(const ArticulatedInertia<S>& Ia, ArticulatedInertia<S>& out) const {
-    out += applyInverse(Ia);
   }
 
   // ---- composition and inverse ----------------------------------------------------------

@@ -65,7 +65,7 @@ struct RigidInertia {
   /// The same body's inertia in axes turned by R (x ↦ R x): (m, R h, R Ī_O Rᵀ), Ī_O's
   /// upper triangle copied from its lower one so that it stays exactly symmetric.
   SD_INLINE RigidInertia rotated(const Mat3<S>& R) const {
-    Mat3<S> turned = R * (R * rotational_inertia).transpose();  // R (R Ī)ᵀ = R Ī Rᵀ, Ī symmetric
+    Mat3<S> turned = (R * rotational_inertia).timesTransposed(R);  // (R Ī) Rᵀ
     turned.symmetrize_from_lower();
     return RigidInertia(mass, R * first_moment, turned);
   }
