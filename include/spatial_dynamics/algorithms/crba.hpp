@@ -65,9 +65,9 @@ void crba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q)
   if (model.has_coupled_joints) data.M.setZero();
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& joint = model.joints[i];
+    const S k_col = coupling_multiplier(joint);
     for (int k = 0; k < joint.nv; ++k) {
       const Eigen::Index col = joint.idx_v + k;
-      const S k_col = coupling_multiplier(joint);
       const ForceVector<S> F = data.Ic[i] * data.S_base[i][k];  // F = Iᶜ_i S̃_i
       set_mass_entries(model, data, i, F, col, k_col, k, false);  // M_ii = S̃ᵢᵀ F
       for (int j = model.parent[i]; j > 0; j = model.parent[j])  // M_λi = S̃_λᵀ F about p_λ

@@ -171,7 +171,7 @@ SD_INLINE void body_joint_project(const Model<S>& model, const Data<S>& data, in
 /// virtual power a coupled joint's force acts on its master's coordinate scaled by k.
 template <class S>
 SD_INLINE void write_joint_torque(const Model<S>& model, const Data<S>& data, int i, const ForceVector<S>& f, S* tau,
-                               bool accumulate) {
+                                  bool accumulate) {
   const Joint<S>& j = model.joints[i];
   if (!accumulate) {
     body_joint_project(model, data, i, f, tau + j.idx_v);
