@@ -3,6 +3,7 @@
 
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
+#include "spatial_dynamics/algorithms/coriolis.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/energy.hpp"
 #include "spatial_dynamics/algorithms/forward_dynamics.hpp"

@@ -11,8 +11,11 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
       read_source_([this] { return read_robot_source(nh_, private_nh_); }),
       store_(read_node_config(private_nh_)),
       services_(private_nh_, loadedAtStartUp(), tf_frames_, read_source_),
-      joint_states_(nh_, private_nh_, store_),
-      diagnostics_(nh_, private_nh_, store_, services_, joint_states_) {}
+      external_torques_(private_nh_, store_),
+      joint_states_(nh_, private_nh_, store_, external_torques_),
+      diagnostics_(nh_, private_nh_, store_, services_, joint_states_, external_torques_) {
+  services_.onReloaded([this] { external_torques_.reconfigure(); });
+}
 
 ModelStore& DynamicsNode::loadedAtStartUp() {
   ROS_INFO("dynamics: simd backend %s", simd_backend_or_error().c_str());

@@ -6,8 +6,9 @@
 
 namespace spatial_dynamics {
 
-JointStatePipeline::JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store)
-    : store_(store), reported_time_(ros::WallTime::now()) {
+JointStatePipeline::JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store,
+                                       ExternalTorqueMonitor& external_torques)
+    : store_(store), external_torques_(external_torques), reported_time_(ros::WallTime::now()) {
   for (const SceneConfig& scene : store_.config().scenes)
     computed_torques_.push_back(private_nh.advertise<sensor_msgs::JointState>(scene.resolve("computed_torques"), 1000));
   if (store_.config().inline_joint_states)
@@ -47,6 +48,7 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
   if (!error.empty()) {
     ++drops_;
     ROS_WARN_THROTTLE(5.0, "dynamics: joint_states message dropped: %s", error.c_str());
+    external_torques_.onDropped(error);
     return;
   }
   if (!unknown.empty()) warnUnknown(unknown);
@@ -76,6 +78,7 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
     }
   }
   if (published) torque_latency_us_.record((ros::Time::now() - event.getReceiptTime()).toSec() * 1e6);
+  external_torques_.onJointStates(*msg, robot);
 }
 
 void JointStatePipeline::report(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -8,6 +8,8 @@
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/urdf/model_builder.hpp"
 
+#include <urdf_parser/urdf_parser.h>
+
 namespace spatial_dynamics {
 
 std::shared_ptr<const ServedRobot> ModelStore::loadRobot(const RobotSource& source,
@@ -25,6 +27,9 @@ std::shared_ptr<const ServedRobot> ModelStore::loadRobot(const RobotSource& sour
                                                    config_.unknown_joints);
   robot->robot_name = robot->bare->name;
   robot->root_frame = robot->bare->body_names[0];
+  if (const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(source.urdf))
+    for (const auto& link : urdf->links_)
+      if (link.second->child_links.empty()) robot->leaf_links.push_back(link.first);
   return robot;
 }
 

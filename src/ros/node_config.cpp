@@ -1,6 +1,7 @@
 #include "spatial_dynamics/ros/node_config.hpp"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <ros/console.h>
@@ -114,7 +115,58 @@ std::string check(const ros::NodeHandle& private_nh, const NodeConfig& config, c
   return "";
 }
 
+/// A number parameter's value (int or double), or false.
+bool as_number(const XmlRpc::XmlRpcValue& value, double& out) {
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble) out = static_cast<double>(const_cast<XmlRpc::XmlRpcValue&>(value));
+  else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) out = static_cast<int>(const_cast<XmlRpc::XmlRpcValue&>(value));
+  else return false;
+  return true;
+}
+
+/// `key` under `nh` as one number or a map name → number; throws naming it otherwise.
+void read_number_or_map(const ros::NodeHandle& nh, const std::string& key, double& number,
+                        std::map<std::string, double>& by_name) {
+  XmlRpc::XmlRpcValue value;
+  nh.getParam(key, value);
+  const std::string culprit = "parameter " + nh.resolveName(key) + " must be a number or a map joint → number";
+  if (as_number(value, number)) return;
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) throw std::runtime_error(culprit);
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    double x = 0;
+    if (!as_number(it->second, x)) throw std::runtime_error(culprit + " ('" + it->first + "' is not a number)");
+    by_name[it->first] = x;
+  }
+}
+
 }  // namespace
+
+ExternalTorqueSettings read_external_torque_settings(const ros::NodeHandle& private_nh) {
+  ExternalTorqueSettings settings;
+  const ros::NodeHandle nh(private_nh, "external_torques");
+  settings.parameter = nh.getNamespace();
+  try {
+    if (nh.hasParam("enabled") && !nh.getParam("enabled", settings.enabled))
+      throw std::runtime_error("parameter " + nh.resolveName("enabled") + " must be true or false");
+    if (nh.hasParam("gain")) read_number_or_map(nh, "gain", settings.gain, settings.joint_gains);
+    if (nh.hasParam("collision_threshold")) {
+      settings.detect_collisions = true;
+      read_number_or_map(nh, "collision_threshold", settings.threshold, settings.joint_thresholds);
+    }
+    if (nh.hasParam("frames")) {
+      settings.frames_given = true;
+      settings.frames = read_names(nh, "frames");
+    }
+    if (nh.hasParam("max_gap")) {
+      XmlRpc::XmlRpcValue value;
+      nh.getParam("max_gap", value);
+      if (!as_number(value, settings.max_gap))
+        throw std::runtime_error("parameter " + nh.resolveName("max_gap") + " must be a number (s)");
+    }
+  } catch (const std::exception& e) {
+    settings.error = e.what();
+  }
+  return settings;
+}
 
 NodeConfig read_node_config(const ros::NodeHandle& private_nh) {
   NodeConfig config;

@@ -13,8 +13,13 @@ std::string simd_backend_or_error() {
 }
 
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
-                                 const ServiceEndpoints& services, JointStatePipeline& joint_states)
-    : store_(store), services_(services), joint_states_(joint_states), updater_(nh, private_nh) {
+                                 const ServiceEndpoints& services, JointStatePipeline& joint_states,
+                                 ExternalTorqueMonitor& external_torques)
+    : store_(store),
+      services_(services),
+      joint_states_(joint_states),
+      external_torques_(external_torques),
+      updater_(nh, private_nh) {
   updater_.setHardwareID("none");
   updater_.add("Dynamics", this, &NodeDiagnostics::diagnose);
   timer_ = ros::NodeHandle(private_nh).createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { updater_.update(); });
@@ -24,11 +29,14 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
   status.add("simd backend", simd_backend_or_error());
   joint_states_.report(status);
   services_.report(status);
+  external_torques_.report(status);
   std::string scene_errors;
   for (std::size_t k = 0; k < store_.sceneCount(); ++k) {
     const auto s = store_.scene(k);
     if (s && !s->error.empty()) append_message(scene_errors, s->error);
   }
+  const std::string external_torque_error = external_torques_.error();
+  if (!external_torque_error.empty()) append_message(scene_errors, external_torque_error);
   const std::shared_ptr<const ServedRobot> robot = store_.robot();
   if (!robot) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "no robot model: " + store_.loadError());

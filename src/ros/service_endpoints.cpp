@@ -58,6 +58,7 @@ bool ServiceEndpoints::serve(std::size_t k, Counters& counters, Response& res, C
 
 bool ServiceEndpoints::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
   res.success = store_.reload(source_, res.message);
+  if (res.success && reloaded_) reloaded_();
   if (res.success)
     ROS_INFO("dynamics: %s", res.message.c_str());
   else

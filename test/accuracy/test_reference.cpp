@@ -25,6 +25,7 @@
 #include "spatial_dynamics/reference/mass_matrix.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
 #include "synthetic_robots.hpp"
+#include "exact_rotations.hpp"
 #include "test_utils.hpp"
 
 namespace sd = spatial_dynamics;
@@ -82,20 +83,7 @@ StateQ random_state(const sd::Model<double>& model, std::mt19937& rng, bool unit
   return x;
 }
 
-/// The model in float128 with its rotations orthogonal and its joint axes of unit length to
-/// float128 precision. Rounded to double they are off by ~1e-16, and where E Eᵀ ≠ 1 formulas that
-/// agree for a rotation part ways: the library's CRBA carries columns in base coordinates on deep
-/// trees (Eᵀ taken as E⁻¹) and shifts a prismatic joint's origin as Eᵀ(q a), the reference
-/// multiplies 6×6 matrices. On the same exact rotations they must agree to float128 rounding.
-sd::Model<Quad> with_exact_rotations(const sd::Model<double>& model_d) {
-  sd::Model<Quad> model = model_d.cast<Quad>();
-  for (int i = 1; i < model.nbodies(); ++i) {
-    model.X_tree[i].E = Eigen::Quaternion<Quad>(model.X_tree[i].E.eigen()).normalized().toRotationMatrix();
-    model.joints[i].axis.normalize();
-  }
-  model.finalize();  // the joint types take the axes again
-  return model;
-}
+using sd_test::with_exact_rotations;
 
 struct Agreement {
   double rnea = 0, rnea_ext = 0, crba = 0, aba = 0, aba_ext = 0;

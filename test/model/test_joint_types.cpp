@@ -1,6 +1,7 @@
 // Every joint type (model/joints/, through the one dispatch) against its own transform, in
 // float128: S q̇ against the relative velocity v_J from a central difference of X_J along q̇
-// (crm(v_J) = −Ẋ_J X_J⁻¹, RBDA §4.4), c_J against the difference of S q̇ along q̇, and every
+// (crm(v_J) = −Ẋ_J X_J⁻¹, RBDA §4.4), c_J against the difference of S q̇ along q̇, S̊ (column_rate)
+// against the difference of each column along q̇ and its sum Σ S̊_k q̇_k against c_J, and every
 // other method against the dense S formed from `column`: Sᵀ f, I S, c_J + v × S q̇, and S q̇ = S q̇
 // column by column. X_J itself against the reference's joint transform (reference/joint_model.hpp).
 #include <gtest/gtest.h>
@@ -128,6 +129,21 @@ TEST(JointTypes, AgainstTheirTransformAndDenseSubspace) {
         const sd::MotionVector<Quad> v(random_vector(6, rng));
         const sd::Vector6<Quad> expected = cJ + sd::motion_cross_matrix(v) * vJ;
         EXPECT_LE(max_abs(joint.velocity_product(v, qd.data(), s, c).toVector() - expected), 1e-20) << what;
+        // S̊ column by column: the difference of S's column along q̇ (a free joint's q̇ is not
+        // dq/dt, but its S is constant), and Σ S̊_k q̇_k = c_J.
+        sd::Vector6<Quad> rate_sum = sd::Vector6<Quad>::Zero();
+        for (int k = 0; k < nv; ++k) {
+          const auto column_at = [&](const Quad& t) {
+            const Quad angle = angle_of(j, sd::VectorX<Quad>(q + t * qd));
+            return joint.column(k, sin(angle), cos(angle)).toVector();
+          };
+          const sd::Vector6<Quad> numeric = j.type == sd::JointType::Free ? sd::Vector6<Quad>::Zero()
+                                                                          : sd::Vector6<Quad>((column_at(h) - column_at(-h)) / (2 * h));
+          const sd::Vector6<Quad> rate = joint.column_rate(k, qd.data(), s, c).toVector();
+          EXPECT_LE(max_abs(rate - numeric), 1e-20) << what << ", column " << k;
+          rate_sum += rate * qd[k];
+        }
+        EXPECT_LE(max_abs(rate_sum - cJ), 1e-20) << what;
         // Sᵀ f.
         const sd::ForceVector<Quad> f(random_vector(6, rng));
         EXPECT_LE(max_abs(joint.project(f, s, c) - S.transpose() * f.toVector()), 1e-30) << what;

@@ -52,35 +52,39 @@ Srv call(const std::string& name, Srv srv) {
   return srv;
 }
 
-/// Records the ~computed_torques messages of `topic`.
-class TorqueListener {
+/// Every message of a topic, in arrival order.
+template <class Message>
+class Collector {
  public:
-  explicit TorqueListener(ros::NodeHandle& nh, const std::string& topic = "/dynamics/computed_torques")
-      : sub_(nh.subscribe(topic, 100, &TorqueListener::on, this)) {}
+  Collector(ros::NodeHandle& nh, const std::string& topic) : sub_(nh.subscribe(topic, 10000, &Collector::on, this)) {}
 
-  /// Waits for the message stamped `stamp`.
-  bool waitFor(const ros::Time& stamp, sensor_msgs::JointState& out, double seconds = 5.0) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    const bool found = cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
-      return std::any_of(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
-    });
-    if (found) out = *std::find_if(received_.begin(), received_.end(), [&](const auto& m) { return m.header.stamp == stamp; });
-    return found;
-  }
   /// Waits for `count` messages; those received by then.
-  std::vector<sensor_msgs::JointState> waitForCount(std::size_t count, double seconds) {
+  std::vector<Message> waitForCount(std::size_t count, double seconds) {
     std::unique_lock<std::mutex> lock(mutex_);
     cv_.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return received_.size() >= count; });
     return received_;
   }
-  bool connected() const { return sub_.getNumPublishers() > 0; }
+  /// Waits for the message stamped `stamp`.
+  bool waitFor(const ros::Time& stamp, Message& out, double seconds = 5.0) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const auto stamped = [&](const Message& m) { return m.header.stamp == stamp; };
+    const bool found = cv_.wait_for(lock, std::chrono::duration<double>(seconds),
+                                    [&] { return std::any_of(received_.begin(), received_.end(), stamped); });
+    if (found) out = *std::find_if(received_.begin(), received_.end(), stamped);
+    return found;
+  }
+  std::vector<Message> all() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return received_;
+  }
   std::size_t count() {
     std::lock_guard<std::mutex> lock(mutex_);
     return received_.size();
   }
+  bool connected() const { return sub_.getNumPublishers() > 0; }
 
  private:
-  void on(const sensor_msgs::JointState& msg) {
+  void on(const Message& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     received_.push_back(msg);
     cv_.notify_all();
@@ -88,7 +92,14 @@ class TorqueListener {
   ros::Subscriber sub_;
   std::mutex mutex_;
   std::condition_variable cv_;
-  std::vector<sensor_msgs::JointState> received_;
+  std::vector<Message> received_;
+};
+
+/// Records the ~computed_torques messages of `topic`.
+class TorqueListener : public Collector<sensor_msgs::JointState> {
+ public:
+  explicit TorqueListener(ros::NodeHandle& nh, const std::string& topic = "/dynamics/computed_torques")
+      : Collector(nh, topic) {}
 };
 
 /// ~reload, the call expected to go through.

@@ -277,6 +277,20 @@ TEST(SpatialAlgebra, InertiaTimeDerivativeByFiniteDifferences) {
   }
 }
 
+// RigidInertia::rate(v), İ in eq. (25)'s ten-parameter form with m = 0, against eq. (27) on 6×6
+// matrices, v×* I − I v×, and a sum of rates is the rate of the sum (the Coriolis matrix's İᶜ).
+TEST(SpatialAlgebra, InertiaRateIsEq27InTenParameters) {
+  Random r;
+  for (int trial = 0; trial < 50; ++trial) {
+    const RigidInertia<double> I = r.inertia(), J = r.inertia();
+    const MotionVector<double> v = r.motion();
+    const RigidInertia<double> rate = I.rate(v);
+    EXPECT_EQ(rate.mass, 0.0);
+    EXPECT_LE(rel(rate.toMatrix(), sd::inertia_time_derivative(I, v)), 1e-14);
+    EXPECT_LE(rel((I + J).rate(v).toMatrix(), (I.rate(v) + J.rate(v)).toMatrix()), 1e-14);
+  }
+}
+
 // eq. (29): f = d/dt (I v) = I a + v ×* I v, by central differences of the momentum of a body
 // whose velocity changes as v + t a while it moves.
 TEST(SpatialAlgebra, EquationOfMotionByFiniteDifferences) {

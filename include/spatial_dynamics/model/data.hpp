@@ -26,9 +26,18 @@ struct Data {
   std::vector<MotionVector<S>> a;           // body accelerations, less the base's −a_g (RNEA, ABA;
                                             // without gravity where the ABA splits it off)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations c_J + v_i × S_i q̇_i (ABA)
-  std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA)
-  std::vector<RigidInertia<S>> Ic;          // composite inertias Iᶜ (CRBA: base axes, about the body's origin)
-  std::vector<std::array<MotionVector<S>, 6>> S_base;  // the columns of S in base axes (CRBA; first nv used)
+  std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA), subtree
+                                            // momenta Σ I v (generalized_momentum)
+  std::vector<RigidInertia<S>> Ic;          // composite inertias Iᶜ in base axes (CRBA: about the body's
+                                            // origin; coriolis_matrix: about the base origin)
+  std::vector<std::array<MotionVector<S>, 6>> S_base;  // the columns of S in base axes (first nv used;
+                                                       // about the same point as Iᶜ)
+  // Coriolis matrix (coriolis.hpp), in base coordinates about the base origin: body velocities,
+  // the columns of Ṡ, and per subtree İᶜ = Σ İ and the momentum hᶜ = Σ I v.
+  std::vector<MotionVector<S>> v_base;
+  std::vector<std::array<MotionVector<S>, 6>> S_rate_base;
+  std::vector<RigidInertia<S>> Ic_rate;
+  std::vector<ForceVector<S>> hc_base;
   // Joints with an angle (revolute, planar): the bodies they move, and sin and cos of each
   // angle (0 and 1 for other bodies), all computed together before the passes (model/joints/body_joint.hpp).
   std::vector<int> angle_bodies;
@@ -54,6 +63,9 @@ struct Data {
   VectorX<S> qdd;     // aba output
   MatrixX<S> M;       // crba output (both triangles)
   Matrix6X<S> J;      // frame_jacobian output
+  MatrixX<S> C;       // coriolis_matrix output
+  VectorX<S> momentum;                     // generalized_momentum output, p = M q̇
+  VectorX<S> coriolis_transpose_velocity;  // coriolis_transpose_times_velocity output, Cᵀ q̇
 
   // Zero inputs for the RNEA special cases (gravity torques, nonlinear effects).
   VectorX<S> zero_v;
@@ -75,6 +87,10 @@ struct Data {
         f(model.nbodies(), ForceVector<S>::Zero()),
         Ic(model.nbodies()),
         S_base(model.nbodies()),
+        v_base(model.nbodies(), MotionVector<S>::Zero()),
+        S_rate_base(model.nbodies()),
+        Ic_rate(model.nbodies()),
+        hc_base(model.nbodies(), ForceVector<S>::Zero()),
         joint_sin(model.nbodies(), S(0)),
         joint_cos(model.nbodies(), S(1)),
         IA(model.nbodies()),
@@ -87,6 +103,9 @@ struct Data {
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
         J(Matrix6X<S>::Zero(6, model.nv)),
+        C(MatrixX<S>::Zero(model.nv, model.nv)),
+        momentum(VectorX<S>::Zero(model.nv)),
+        coriolis_transpose_velocity(VectorX<S>::Zero(model.nv)),
         zero_v(VectorX<S>::Zero(model.nv)),
         actuator_force(VectorX<S>::Zero(model.nv)),
         actuator_effort(VectorX<S>::Zero(model.nv)),

@@ -3,7 +3,8 @@
 // scenes (reduced models), manages payloads, and publishes computed torques. It only wires its
 // parts, each with one job: the configuration (node_config.hpp), the models served
 // (model_store.hpp), the services (service_endpoints.hpp), the joint-state pipeline
-// (joint_state_pipeline.hpp) and diagnostics (node_diagnostics.hpp). The arithmetic is the
+// (joint_state_pipeline.hpp), the external-torque estimate (external_torque_monitor.hpp) and
+// diagnostics (node_diagnostics.hpp). The arithmetic is the
 // library's; message ↔ vector translation is the service handlers' (service_handlers.hpp).
 #pragma once
 
@@ -39,6 +40,7 @@ class DynamicsNode {
   ModelStore store_;
   // Destroyed in reverse: diagnostics, then joint_states (unsubscribed before the store goes).
   ServiceEndpoints services_;
+  ExternalTorqueMonitor external_torques_;
   JointStatePipeline joint_states_;
   NodeDiagnostics diagnostics_;
 };

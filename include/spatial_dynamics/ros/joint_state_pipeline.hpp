@@ -1,6 +1,7 @@
 // joint_states in, ~computed_torques out (doc/node.md): each message is merged into the robot's
-// joint-state cache by name, a scene whose locked joint has moved is rebuilt, and each scene
-// publishes ID(q, q̇, 0) at the latest complete state. joint_states never wait behind service
+// joint-state cache by name, a scene whose locked joint has moved is rebuilt, each scene
+// publishes ID(q, q̇, 0) at the latest complete state, and the message's effort goes to the
+// external-torque estimate (external_torque_monitor.hpp). joint_states never wait behind service
 // calls: by default (~inline_joint_states) each message is handled at once in roscpp's receiving
 // thread; otherwise, or when that is busy, by a thread of its own, so that a burst of service
 // calls never delays (or, through a full queue, drops) a joint state and its computed torques.
@@ -17,6 +18,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 
+#include "spatial_dynamics/ros/external_torque_monitor.hpp"
 #include "spatial_dynamics/ros/inline_callback_queue.hpp"
 #include "spatial_dynamics/ros/latency_recorder.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
@@ -25,8 +27,10 @@ namespace spatial_dynamics {
 
 class JointStatePipeline {
  public:
-  /// Subscribes joint_states under `nh` and advertises each scene's computed_torques under `private_nh`.
-  JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store);
+  /// Subscribes joint_states under `nh` and advertises each scene's computed_torques under
+  /// `private_nh`; each merged message also goes to `external_torques`.
+  JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store,
+                     ExternalTorqueMonitor& external_torques);
   /// Stops joint_states first, so that no callback runs while the members it uses are destroyed.
   ~JointStatePipeline();
   JointStatePipeline(const JointStatePipeline&) = delete;
@@ -41,6 +45,7 @@ class JointStatePipeline {
   void warnUnknown(const std::vector<std::string>& unknown);
 
   ModelStore& store_;
+  ExternalTorqueMonitor& external_torques_;
   std::vector<ros::Publisher> computed_torques_;  // one per scene
   InlineCallbackQueue queue_;
   ros::Subscriber subscriber_;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "spatial_dynamics/ros/actuator_parameters.hpp"
+#include "spatial_dynamics/ros/external_torque_settings.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
 
 namespace ros {
@@ -45,6 +46,11 @@ struct NodeConfig {
 /// Every start-up parameter under the node's private namespace. A bad scene is kept with its error
 /// (its services report it); an invalid ~scenes or scene name is logged and not served.
 NodeConfig read_node_config(const ros::NodeHandle& private_nh);
+
+/// ~external_torques/* as they are now (read at start-up and on every ~reload); a malformed one
+/// is named in the result's `error` (the values are checked against each model by
+/// ExternalTorqueEstimator).
+ExternalTorqueSettings read_external_torque_settings(const ros::NodeHandle& private_nh);
 
 /// What a robot model is built from.
 struct RobotSource {

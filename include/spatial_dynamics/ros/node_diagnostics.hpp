@@ -1,11 +1,13 @@
 // The node's /diagnostics status, once a second: the SIMD backend, the joint-state pipeline's
-// rates, drops and latency, each service's calls and failures, the robot served and, as the
-// summary, what stops it serving (no model, a scene's error) or waits (incomplete joint states).
+// rates, drops and latency, each service's calls and failures, the external-torque estimate, the
+// robot served and, as the summary, what stops it serving (no model, a scene's error, a refused
+// ~external_torques parameter) or waits (incomplete joint states).
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include "spatial_dynamics/ros/external_torque_monitor.hpp"
 #include "spatial_dynamics/ros/joint_state_pipeline.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
 #include "spatial_dynamics/ros/service_endpoints.hpp"
@@ -15,7 +17,8 @@ namespace spatial_dynamics {
 class NodeDiagnostics {
  public:
   NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
-                  const ServiceEndpoints& services, JointStatePipeline& joint_states);
+                  const ServiceEndpoints& services, JointStatePipeline& joint_states,
+                  ExternalTorqueMonitor& external_torques);
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -23,6 +26,7 @@ class NodeDiagnostics {
   const ModelStore& store_;
   const ServiceEndpoints& services_;
   JointStatePipeline& joint_states_;
+  ExternalTorqueMonitor& external_torques_;
   diagnostic_updater::Updater updater_;
   ros::Timer timer_;
 };

@@ -25,6 +25,7 @@ struct ServedRobot {
   std::shared_ptr<JointStateCache> cache;     // every joint of the robot; survives payload changes
   std::string robot_name;
   std::string root_frame;                     // the URDF root link: the frame tf chains through
+  std::vector<std::string> leaf_links;        // the URDF links without children (external wrench frames)
   ActuatorModel actuator_model = ActuatorModel::RigidBody;
 };
 

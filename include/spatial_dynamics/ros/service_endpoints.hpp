@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ class ServiceEndpoints {
 
   /// Calls and failures of each service.
   void report(diagnostic_updater::DiagnosticStatusWrapper& status) const;
+  /// `listener` runs after each successful ~reload (set before the first call can arrive).
+  void onReloaded(std::function<void()> listener) { reloaded_ = std::move(listener); }
 
  private:
   struct Counters {
@@ -53,6 +56,7 @@ class ServiceEndpoints {
   ModelStore& store_;
   const FrameLookup& frames_;
   ModelStore::SourceReader source_;
+  std::function<void()> reloaded_;
   std::deque<Counters> counters_;  // stable addresses: the callbacks hold them
   std::vector<ros::ServiceServer> services_;
 };

@@ -84,6 +84,15 @@ struct RigidInertia {
     return RigidInertia(mass, h_less_mp, shifted);
   }
 
+  /// The rate of change, in fixed coordinates, of the inertia of a body moving with velocity
+  /// v = (ω ; v_O): İ = v×* I − I v× (eq. 27) has eq. (25)'s form with m = 0, with
+  /// ḣ = m v_O + ω × h and d/dt Ī_O = P + Pᵀ + 2 (h · v_O) 1, P = ω× Ī_O − h v_Oᵀ.
+  SD_INLINE RigidInertia rate(const MotionVector<S>& v) const {
+    const Mat3<S> P = skew(v.angular) * rotational_inertia - Mat3<S>::Outer(first_moment, v.linear);
+    return RigidInertia(S(0), v.linear * mass + cross(v.angular, first_moment),
+                        (P + P.transpose()).plusDiagonal(S(2) * dot(first_moment, v.linear)));
+  }
+
   /// Composite inertia of two bodies rigidly joined: I = I_1 + I_2 (eq. 24).
   RigidInertia& operator+=(const RigidInertia& o) {
     mass += o.mass;

@@ -44,6 +44,8 @@ struct FreeJoint {
     e[k] = S(1);
     return MotionVector<S>(e);
   }
+  /// S̊ = dS/dt in child coordinates, column k: zero (S is constant).
+  MotionVector<S> column_rate(int, const S*, const S&, const S&) const { return MotionVector<S>::Zero(); }
 
   static std::vector<std::string> position_names(const std::string& joint) {
     std::vector<std::string> names;

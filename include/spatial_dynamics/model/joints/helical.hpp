@@ -37,6 +37,8 @@ struct HelicalJoint {
     return Eigen::Matrix<S, 1, 1>(dot(axis, f.angular) + pitch * dot(axis, f.linear));
   }
   MotionVector<S> column(int, const S&, const S&) const { return {axis, axis * pitch}; }
+  /// S̊ = dS/dt in child coordinates, column k: zero (S is constant).
+  MotionVector<S> column_rate(int, const S*, const S&, const S&) const { return MotionVector<S>::Zero(); }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

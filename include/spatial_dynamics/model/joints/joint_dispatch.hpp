@@ -3,7 +3,7 @@
 // compiled once per joint type and no algorithm tests a joint's kind, axis or number of
 // coordinates. A joint type added to the list below is served by every algorithm; one that does
 // not provide what they ask of a joint (transform, motion, velocity_product, project,
-// column, names) does not compile.
+// column, column_rate, names) does not compile.
 #pragma once
 
 #include <variant>

@@ -49,6 +49,12 @@ struct PlanarJoint {
     if (k == 2) return {axis, Vec3<S>()};
     return {Vec3<S>(), k == 0 ? u1(s, c) : u2(s, c)};
   }
+  /// S̊ = dS/dt in child coordinates, column k: u̇₁ = −ψ̇ n × u₁ and u̇₂ = −ψ̇ n × u₂ as the child
+  /// turns; n is constant (Σ_k S̊_k q̇_k is c_J).
+  MotionVector<S> column_rate(int k, const S* qd, const S& s, const S& c) const {
+    if (k == 2) return MotionVector<S>::Zero();
+    return {Vec3<S>(), cross(axis, k == 0 ? u1(s, c) : u2(s, c)) * (-qd[2])};
+  }
 
   static std::vector<std::string> position_names(const std::string& joint) { return velocity_names(joint); }
   static std::vector<std::string> velocity_names(const std::string& joint) {

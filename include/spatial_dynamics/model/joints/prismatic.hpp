@@ -34,6 +34,8 @@ struct PrismaticJoint {
   }
 
   MotionVector<S> column(int, const S&, const S&) const { return {Vec3<S>(), axis}; }
+  /// S̊ = dS/dt in child coordinates, column k: zero (S is constant).
+  MotionVector<S> column_rate(int, const S*, const S&, const S&) const { return MotionVector<S>::Zero(); }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }

@@ -33,6 +33,8 @@ struct RevoluteAxisJoint {
     return Eigen::Matrix<S, 1, 1>(f.angular[k]);
   }
   MotionVector<S> column(int, const S&, const S&) const { return {detail::unit_axis<S, k>(S(1)), Vec3<S>()}; }
+  /// S̊ = dS/dt in child coordinates, column k: zero (S is constant).
+  MotionVector<S> column_rate(int, const S*, const S&, const S&) const { return MotionVector<S>::Zero(); }
 
   static std::vector<std::string> position_names(const std::string& joint) { return {joint}; }
   static std::vector<std::string> velocity_names(const std::string& joint) { return {joint}; }
