@@ -26,9 +26,9 @@ elif [[ "${1:-}" =~ ^[0-9]+$ ]]; then
   shift
 fi
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction service_handlers)
+[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction service_handlers external_torques)
 for t in "${targets[@]}"; do
-  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder, scene_reduction or service_handlers)"
+  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder, scene_reduction, service_handlers or external_torques)"
 done
 
 bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dependencies failed"
