@@ -99,32 +99,40 @@ void coriolis_matrix_impl(const Model<S>& model, Data<S>& data, const ConstVecto
   }
 }
 
-/// p = M q̇ and Cᵀ q̇ into data.momentum and data.coriolis_transpose_velocity, in one pass in body
-/// coordinates without M or C: forward v_i = ^iX_λ v_λ + S_i q̇_i and h_i = I_i v_i (eq. 23),
-/// backward hᶜ_λ += ^iX_λᵀ hᶜ_i; then p_i = S_iᵀ hᶜ_i (+ armature ⊙ q̇) and, since Bᵀ v = 0,
-/// Cᵀ q̇ = Σ_k J̇_kᵀ I_k v_k, whose entry for a column s of S_i is (v_i × s + s̊)ᵀ hᶜ_i
-/// = sᵀ (−v_i ×* hᶜ_i) + s̊ᵀ hᶜ_i.
+/// p = M q̇ and Cᵀ q̇ into data.momentum and data.coriolis_transpose_velocity, and with `gravity`
+/// g(q) into data.tau as well, in one pass in body coordinates without M or C: forward
+/// v_i = ^iX_λ v_λ + S_i q̇_i and h_i = I_i v_i (eq. 23); backward hᶜ_λ += ^iX_λᵀ hᶜ_i; then
+/// p_i = S_iᵀ hᶜ_i (+ armature ⊙ q̇) and, since Bᵀ v = 0, Cᵀ q̇ = Σ_k J̇_kᵀ I_k v_k, whose entry for
+/// a column s of S_i is (v_i × s + s̊)ᵀ hᶜ_i = sᵀ (−v_i ×* hᶜ_i) + s̊ᵀ hᶜ_i. g is the RNEA's at
+/// q̇ = q̈ = 0 (Table 5.1: a_i = ^iX_λ a_λ from a_0 = −a_g, f_i = I_i a_i, τ_i = S_iᵀ f_i,
+/// f_λ += ^iX_λᵀ f_i) riding on the same transforms: the momentum observer's one pass.
 template <class S>
-void momentum_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd) {
+void momentum_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd,
+                   bool gravity) {
   check_length("q", q.size(), model.nq);
   check_length("velocity", qd.size(), model.nv);
   joint_sines_and_cosines(model, data, q.data());
   data.v[0] = MotionVector<S>::Zero();
+  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
+    const int lambda = model.parent[i];
     const BodyJoint<S> J(model, data, i, q.data(), qd.data());
     J.visit([&](const auto& joint) SD_INLINE_LAMBDA {
       const PluckerTransform<S>& X = data.X_up[i] = joint.transform(J.X_tree, J.q, J.s, J.c, J.label);
-      data.v[i] = X.apply(data.v[model.parent[i]]) + joint.motion(J.qd, J.s, J.c);
+      data.v[i] = X.apply(data.v[lambda]) + joint.motion(J.qd, J.s, J.c);
+      if (gravity) data.a[i] = X.apply(data.a[lambda]);
     });
-    data.f[i] = model.inertia[i] * data.v[i];
+    data.h[i] = model.inertia[i] * data.v[i];
+    if (gravity) data.f[i] = model.inertia[i] * data.a[i];
   }
   const bool coupled = model.has_coupled_joints;
   if (coupled) {
     data.momentum.setZero();
     data.coriolis_transpose_velocity.setZero();
+    if (gravity) data.tau.setZero();
   }
   for (int i = model.nbodies() - 1; i >= 1; --i) {
-    const ForceVector<S>& h = data.f[i];
+    const ForceVector<S>& h = data.h[i];
     write_joint_torque(model, data, i, h, data.momentum.data(), coupled);  // p_i = S_iᵀ hᶜ_i
     write_joint_torque(model, data, i, -cross(data.v[i], h), data.coriolis_transpose_velocity.data(), coupled);
     const BodyJoint<S> J(model, data, i, nullptr, qd.data());
@@ -133,7 +141,11 @@ void momentum_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>
         data.coriolis_transpose_velocity[J.joint.idx_v + k] +=
             coupling_multiplier(J.joint) * dot(joint.column_rate(k, J.qd, J.s, J.c), h);
     });
-    if (model.parent[i] > 0) data.f[model.parent[i]] += data.X_up[i].applyInverse(h);
+    if (gravity) write_joint_torque(model, data, i, data.f[i], data.tau.data(), coupled);  // g_i = S_iᵀ f_i
+    const int lambda = model.parent[i];
+    if (lambda == 0) continue;
+    data.h[lambda] += data.X_up[i].applyInverse(h);
+    if (gravity) data.f[lambda] += data.X_up[i].applyInverse(data.f[i]);
   }
   if (model.has_armature)  // + armature ⊙ q̇
     for (int k = 0; k < model.nv; ++k) data.momentum[k] += model.armature[k] * qd[k];
@@ -157,7 +169,7 @@ const MatrixX<S>& coriolis_matrix(const Model<S>& model, Data<S>& data, const Co
 template <class S>
 const VectorX<S>& generalized_momentum(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                                        const ConstVectorRef<S>& qd) {
-  detail::momentum_impl(model, data, q, qd);
+  detail::momentum_impl(model, data, q, qd, false);
   detail::check_finite_result(model, "generalized momentum: the coordinate", data.momentum);
   return data.momentum;
 }
@@ -167,9 +179,20 @@ const VectorX<S>& generalized_momentum(const Model<S>& model, Data<S>& data, con
 template <class S>
 const VectorX<S>& coriolis_transpose_times_velocity(const Model<S>& model, Data<S>& data,
                                                     const ConstVectorRef<S>& q, const ConstVectorRef<S>& qd) {
-  detail::momentum_impl(model, data, q, qd);
+  detail::momentum_impl(model, data, q, qd, false);
   detail::check_finite_result(model, "Cᵀ q̇: the coordinate", data.coriolis_transpose_velocity);
   return data.coriolis_transpose_velocity;
+}
+
+/// What the momentum observer needs at (q, q̇), in one pass: p = M q̇ in data.momentum, Cᵀ q̇ in
+/// data.coriolis_transpose_velocity and g(q) in data.tau. A non-finite result throws as above.
+template <class S>
+void momentum_observer_terms(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
+                             const ConstVectorRef<S>& qd) {
+  detail::momentum_impl(model, data, q, qd, true);
+  detail::check_finite_result(model, "generalized momentum: the coordinate", data.momentum);
+  detail::check_finite_result(model, "Cᵀ q̇: the coordinate", data.coriolis_transpose_velocity);
+  detail::check_finite_result(model, "gravity torques: the joint force", data.tau);
 }
 
 }  // namespace spatial_dynamics

@@ -26,8 +26,9 @@ struct Data {
   std::vector<MotionVector<S>> a;           // body accelerations, less the base's −a_g (RNEA, ABA;
                                             // without gravity where the ABA splits it off)
   std::vector<MotionVector<S>> c;           // velocity-product accelerations c_J + v_i × S_i q̇_i (ABA)
-  std::vector<ForceVector<S>> f;            // body forces (RNEA), bias forces pᴬ (ABA), subtree
-                                            // momenta Σ I v (generalized_momentum)
+  std::vector<ForceVector<S>> f;            // body forces (RNEA; momentum_observer_terms: gravity's),
+                                            // bias forces pᴬ (ABA)
+  std::vector<ForceVector<S>> h;            // subtree momenta Σ I v (generalized_momentum)
   std::vector<RigidInertia<S>> Ic;          // composite inertias Iᶜ in base axes (CRBA: about the body's
                                             // origin; coriolis_matrix: about the base origin)
   std::vector<std::array<MotionVector<S>, 6>> S_base;  // the columns of S in base axes (first nv used;
@@ -85,6 +86,7 @@ struct Data {
         a(model.nbodies(), MotionVector<S>::Zero()),
         c(model.nbodies(), MotionVector<S>::Zero()),
         f(model.nbodies(), ForceVector<S>::Zero()),
+        h(model.nbodies(), ForceVector<S>::Zero()),
         Ic(model.nbodies()),
         S_base(model.nbodies()),
         v_base(model.nbodies(), MotionVector<S>::Zero()),
