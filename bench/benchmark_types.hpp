@@ -13,13 +13,16 @@ namespace bench {
 
 // RneaActuated, AbaActuated: inverse_dynamics_actuated and forward_dynamics_actuated with the
 // actuator terms of benchmark_actuators.hpp (ours only).
-enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk, RneaActuated, AbaActuated };
+// Coriolis: coriolis_matrix; ObserverUpdate: one MomentumObserver::update (with the actuator terms),
+// its result p = M q̇ and u = τ_m − τ_a + Cᵀ q̇ − g (ours only).
+enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk, RneaActuated, AbaActuated,
+                       Coriolis, ObserverUpdate };
 
 inline const std::vector<Algorithm>& all_algorithms() {
   static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::RneaBatch, Algorithm::Aba, Algorithm::AbaRefined,
                                              Algorithm::Crba,         Algorithm::CrbaCholesky,
                                              Algorithm::Gravity,      Algorithm::Fk,        Algorithm::RneaActuated,
-                                             Algorithm::AbaActuated};
+                                             Algorithm::AbaActuated,  Algorithm::Coriolis,  Algorithm::ObserverUpdate};
   return all;
 }
 
@@ -36,6 +39,8 @@ inline const char* name(Algorithm a) {
     case Algorithm::Fk: return "fk";
     case Algorithm::RneaActuated: return "rnea_actuated";
     case Algorithm::AbaActuated: return "aba_actuated";
+    case Algorithm::Coriolis: return "coriolis_matrix";
+    case Algorithm::ObserverUpdate: return "observer_update";
   }
   return "?";
 }

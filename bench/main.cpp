@@ -637,6 +637,36 @@ std::string speed_targets(const std::vector<Row>& rows, const std::vector<ModelS
   return s.str();
 }
 
+/// The momentum observer's rows against our own (issue targets): coriolis_matrix ≤ 2 × crba, one
+/// observer update ≤ rnea + crba, ratios of the rows' medians in this run, with their errors.
+std::string observer_targets(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
+  std::ostringstream s;
+  char line[512];
+  s << "| model | base | build | coriolis_matrix (ns) | crba (ns) | ratio | target | met | C error (max) | observer update (ns) "
+       "| rnea + crba (ns) | ratio | target | met | update error (max) |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ModelSpec& m : specs) {
+    if (!m.kept_joints.empty()) continue;
+    for (const char* library : {"spatial_dynamics", "spatial_dynamics_default_build"}) {
+      const Row* coriolis = find(rows, library, "coriolis_matrix", m.name, m.base);
+      const Row* update = find(rows, library, "observer_update", m.name, m.base);
+      const Row* crba = find(rows, library, "crba", m.name, m.base);
+      const Row* rnea = find(rows, library, "rnea", m.name, m.base);
+      if (!coriolis || !update || !crba || !rnea) continue;
+      const double c_ratio = coriolis->ns_median / crba->ns_median;
+      const double u_ratio = update->ns_median / (rnea->ns_median + crba->ns_median);
+      std::snprintf(line, sizeof line,
+                    "| %s | %s | %s | %.0f | %.0f | %.2f | 2.00 | %s | %.2g | %.0f | %.0f | %.2f | 1.00 | %s | %.2g |\n",
+                    m.name.c_str(), m.base.c_str(), std::string(library) == "spatial_dynamics" ? "native" : "default",
+                    coriolis->ns_median, crba->ns_median, c_ratio, c_ratio <= 2.0 ? "yes" : "**no**", coriolis->max_err,
+                    update->ns_median, rnea->ns_median + crba->ns_median, u_ratio, u_ratio <= 1.0 ? "yes" : "**no**",
+                    update->max_err);
+      s << line;
+    }
+  }
+  return s.str();
+}
+
 /// Forward dynamics against KDL in the package's default build (run-time dispatch), at 0.7 × the
 /// best peer's ABA: over ChainFdSolver_RNE on the serial models ≤ 0.21 (RBDL-clang's ABA ≈ 0.30 × KDL's
 /// forward dynamics on the UR5) and, where KDL has no forward dynamics, over TreeIdSolver_RNE on panda
@@ -722,6 +752,11 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
        "blocks of the two (time_paired), which the machine's drift between the rows' repeats does not move (where a "
        "call of KDL's takes under 1 ms). The last column is aba_refined's time over aba's.\n\n"
     << forward_dynamics_targets(rows, specs, settings) << "\n";
+  s << "## Coriolis matrix and momentum observer\n\n`coriolis_matrix` (C(q, q̇), error as M's: Frobenius) and one "
+       "`MomentumObserver::update` (the benchmark's actuator terms, K = 50/s, Δt = 1 ms; its error over p = M q̇ and "
+       "u = τ_m − τ_a + Cᵀ q̇ − g stacked, τ_m the state's τ) against our own rows of the same run: C within 2 × the "
+       "CRBA's time, an update within one RNEA plus one CRBA (doc/external_torques.md).\n\n"
+    << observer_targets(rows, specs) << "\n";
   if (settings.default_build)
     s << "## The default build against -march=native\n\nThe package's default build (`spatial_dynamics_default_build`: "
          "libspatial_dynamics, its " << sd::simd_backend() << " instances chosen at run time) over our -march=native rows, "
@@ -804,6 +839,7 @@ int main(int argc, char** argv) {
   write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
   std::printf("\nSpeed targets\n\n%s\n", speed_targets(rows, specs).c_str());
   std::printf("\nForward dynamics against KDL, default build\n\n%s\n", forward_dynamics_targets(rows, specs, settings).c_str());
+  std::printf("\nCoriolis matrix and momentum observer\n\n%s\n", observer_targets(rows, specs).c_str());
   if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
   std::printf("\nActuator rows against the rigid-body rows\n\n%s\n",
               actuated_rows(rows).c_str());

@@ -123,7 +123,8 @@ libraries = {
     ("dart", "double"): ("DART 6.12", "tab:orange"),
     ("mujoco", "double"): ("MuJoCo 2.2.2", "tab:red"),
 }
-markers = {"rnea": "o", "rnea_batch": "P", "aba": "s", "aba_refined": "*", "crba": "^", "crba_cholesky": "D", "gravity": "v", "fk": "x"}
+markers = {"rnea": "o", "rnea_batch": "P", "aba": "s", "aba_refined": "*", "crba": "^", "crba_cholesky": "D", "gravity": "v", "fk": "x",
+           "coriolis_matrix": "h", "observer_update": "p"}
 
 fig, ax = plt.subplots(figsize=(12, 8))
 for r in rows:

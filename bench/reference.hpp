@@ -5,6 +5,7 @@
 #include "benchmark_actuators.hpp"
 #include "benchmark_types.hpp"
 #include "spatial_dynamics/algorithms.hpp"
+#include "spatial_dynamics/estimation/momentum_observer.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 
 namespace bench {
@@ -17,7 +18,7 @@ class Reference {
   /// `with_actuated`: also the rows with actuator terms (rnea_actuated, aba_actuated).
   Reference(const spatial_dynamics::Model<double>& model, bool with_actuated)
       : model_(model.cast<Quad>()), actuated_model_(with_benchmark_actuators(model).cast<Quad>()), data_(model_),
-        with_actuated_(with_actuated) {}
+        observer_(actuated_model_, VectorQ::Constant(model_.nv, Quad(50))), with_actuated_(with_actuated) {}
 
   /// Computes every reference result for state s; the mass matrix only when `with_mass_matrix`
   /// (O(n²) in software quad precision: the caller budgets it on large models).
@@ -35,7 +36,13 @@ class Reference {
     if (with_mass_matrix) {
       const spatial_dynamics::MatrixX<Quad>& M = sd::crba(model_, data_, q);
       M_ = Eigen::Map<const VectorQ>(M.data(), M.size());
+      const spatial_dynamics::MatrixX<Quad>& C = sd::coriolis_matrix(model_, data_, q, qd);
+      C_ = Eigen::Map<const VectorQ>(C.data(), C.size());
     }
+    observer_.reset();  // one update's p and u: its first after a reset
+    observer_.update(q, qd, tau, Quad(1e-3));
+    observer_result_.resize(2 * model_.nv);
+    observer_result_ << observer_.momentum(), observer_.explained_momentum_rate();
     sd::forward_kinematics(model_, data_, q);
     poses_.resize(12 * (model_.nbodies() - 1));
     for (int i = 1; i < model_.nbodies(); ++i) {
@@ -46,7 +53,9 @@ class Reference {
     }
   }
 
-  bool has(Algorithm a) const { return (a != Algorithm::Crba || has_mass_matrix_) && (!is_actuated(a) || with_actuated_); }
+  bool has(Algorithm a) const {
+    return ((a != Algorithm::Crba && a != Algorithm::Coriolis) || has_mass_matrix_) && (!is_actuated(a) || with_actuated_);
+  }
 
   const VectorQ& of(Algorithm a) const {
     switch (a) {
@@ -57,6 +66,8 @@ class Reference {
       case Algorithm::Fk: return poses_;
       case Algorithm::RneaActuated: return tau_actuated_;
       case Algorithm::AbaActuated: return qdd_actuated_;
+      case Algorithm::Coriolis: return C_;
+      case Algorithm::ObserverUpdate: return observer_result_;
       default: return qdd_;  // every forward dynamics
     }
   }
@@ -64,7 +75,8 @@ class Reference {
  private:
   spatial_dynamics::Model<Quad> model_, actuated_model_;
   spatial_dynamics::Data<Quad> data_;
-  VectorQ tau_, qdd_, g_, M_, poses_, tau_actuated_, qdd_actuated_;
+  spatial_dynamics::MomentumObserver<Quad> observer_;  // on actuated_model_
+  VectorQ tau_, qdd_, g_, M_, C_, poses_, tau_actuated_, qdd_actuated_, observer_result_;
   bool has_mass_matrix_ = false;
   bool with_actuated_ = false;
 };

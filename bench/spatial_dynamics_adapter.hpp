@@ -9,6 +9,7 @@
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
 #include "spatial_dynamics/algorithms/rnea_batch.hpp"
+#include "spatial_dynamics/estimation/momentum_observer.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 
 namespace bench {
@@ -18,7 +19,9 @@ class SpatialDynamicsAdapter : public Adapter {
  public:
   explicit SpatialDynamicsAdapter(const spatial_dynamics::Model<double>& model)
       : model_(model.cast<S>()), actuated_model_(with_benchmark_actuators(model).cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
-        batch_tau_(model_.nv, kBatchStates) {}
+        batch_tau_(model_.nv, kBatchStates),
+        observer_(actuated_model_, spatial_dynamics::VectorX<S>::Constant(model_.nv, S(50))),
+        observer_result_(2 * model_.nv) {}
 
   std::string library() const override { return "spatial_dynamics"; }
   std::string scalar() const override { return std::is_same<S, float>::value ? "float" : "double"; }
@@ -42,6 +45,8 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::Fk: return "forward_kinematics";
       case Algorithm::RneaActuated: return "inverse_dynamics_actuated (armature, damping, friction)";
       case Algorithm::AbaActuated: return "forward_dynamics_actuated (armature, damping, friction; ABA)";
+      case Algorithm::Coriolis: return "coriolis_matrix";
+      case Algorithm::ObserverUpdate: return "MomentumObserver::update (armature, damping, friction; K = 50/s, 1 kHz)";
     }
     return "";
   }
@@ -90,6 +95,8 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::Fk: sd::forward_kinematics(model_, data_, q_[k]); return;
       case Algorithm::RneaActuated: sd::inverse_dynamics_actuated(actuated_model_, data_, q_[k], qd_[k], qdd_[k]); return;
       case Algorithm::AbaActuated: sd::forward_dynamics_actuated(actuated_model_, data_, q_[k], qd_[k], tau_[k]); return;
+      case Algorithm::Coriolis: sd::coriolis_matrix(model_, data_, q_[k], qd_[k]); return;
+      case Algorithm::ObserverUpdate: observer_.update(q_[k], qd_[k], tau_[k], S(1e-3)); return;
     }
   }
 
@@ -104,6 +111,10 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::AbaRefined: return data_.qdd.template cast<double>();
       case Algorithm::CrbaCholesky: return rhs_.template cast<double>();
       case Algorithm::Crba: return Eigen::Map<const spatial_dynamics::VectorX<S>>(data_.M.data(), data_.M.size()).template cast<double>();
+      case Algorithm::Coriolis: return Eigen::Map<const spatial_dynamics::VectorX<S>>(data_.C.data(), data_.C.size()).template cast<double>();
+      case Algorithm::ObserverUpdate:
+        observer_result_ << observer_.momentum(), observer_.explained_momentum_rate();
+        return observer_result_.template cast<double>();
       case Algorithm::Fk: {
         Eigen::VectorXd poses(12 * (model_.nbodies() - 1));
         for (int i = 1; i < model_.nbodies(); ++i) {
@@ -130,6 +141,8 @@ class SpatialDynamicsAdapter : public Adapter {
   static constexpr int kBatchStates = 64;  // a trajectory's worth per rnea_batch call
   spatial_dynamics::BatchData<S> batch_;
   spatial_dynamics::MatrixX<S> batch_q_, batch_qd_, batch_qdd_, batch_tau_;
+  spatial_dynamics::MomentumObserver<S> observer_;  // on actuated_model_
+  spatial_dynamics::VectorX<S> observer_result_;
 };
 
 }  // namespace bench
