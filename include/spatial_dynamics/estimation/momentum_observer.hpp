@@ -9,8 +9,8 @@
 // follows ṙ̂ = K (τ_ext − r̂): each joint's estimate is τ_ext through a first-order lag of bandwidth
 // K (1/s, diagonal). It needs q, q̇ and τ_m, not q̈.
 //
-// Discretisation (doc/observer.md): the integral by the trapezoid rule over each sample interval,
-// with r̂_k, which it contains, solved for in closed form:
+// Discretisation (doc/external_torques.md): the integral by the trapezoid rule over each sample
+// interval, with r̂_k, which it contains, solved for in closed form:
 //   r̂_k = K (p_k − p_0 − I_{k−1} − Δt (u_{k−1} + u_k + r̂_{k−1}) / 2) / (1 + K Δt / 2),
 //   I_k = I_{k−1} + Δt (u_{k−1} + u_k + r̂_{k−1} + r̂_k) / 2.
 // That is the bilinear (Tustin) map of the lag: stable for any K Δt, second order in Δt.
@@ -23,7 +23,6 @@
 #include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
 #include "spatial_dynamics/algorithms/coriolis.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
-#include "spatial_dynamics/algorithms/rnea.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/model.hpp"
 
