@@ -139,7 +139,7 @@ inline Trajectory simulate(const Robot& robot, const Disturbance& d, double dura
     return wrench_on;
   };
   sd::MomentumObserver<double> observer(model, VectorXd::Constant(n, kGain));
-  std::normal_distribution<double> effort_noise(0.0, noise);
+  std::normal_distribution<double> effort_noise(0.0, noise > 0 ? noise : 1.0);  // drawn from only when noise > 0
   VectorXd q = q0, qd = VectorXd::Zero(n), ideal = VectorXd::Zero(n), previous_input = VectorXd::Zero(n);
   VectorXd tared = VectorXd::Zero(n);  // the estimate tared away
   bool wrench_on = false;  // during the step that ended at this sample
