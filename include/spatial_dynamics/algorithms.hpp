@@ -9,4 +9,5 @@
 #include "spatial_dynamics/algorithms/forward_dynamics.hpp"
 #include "spatial_dynamics/algorithms/jacobian.hpp"
 #include "spatial_dynamics/algorithms/kinematics.hpp"
+#include "spatial_dynamics/algorithms/regressor.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"

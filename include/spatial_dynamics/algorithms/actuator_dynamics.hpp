@@ -23,14 +23,19 @@ namespace spatial_dynamics {
 
 namespace detail {
 
-/// τ_a of coordinate k at speed v: damping v + friction ramp(v / v_f), dividing only inside the
-/// ramp (a moving joint's speed is mostly outside it: a branch the CPU predicts); NaN stays NaN.
+/// ramp(v / v_f) of coordinate k at speed v, dividing only inside the ramp (a moving joint's speed
+/// is mostly outside it: a branch the CPU predicts); NaN stays NaN.
 template <class S>
-SD_INLINE S actuator_force(const Model<S>& model, int k, const S& v) {
+SD_INLINE S friction_ramp(const Model<S>& model, int k, const S& v) {
   using std::abs;
   const S v_f = model.friction_velocity[k];
-  const S ramp = abs(v) >= v_f ? (v > S(0) ? S(1) : S(-1)) : v / v_f;
-  return model.damping[k] * v + model.friction[k] * ramp;
+  return abs(v) >= v_f ? (v > S(0) ? S(1) : S(-1)) : v / v_f;
+}
+
+/// τ_a of coordinate k at speed v: damping v + friction ramp(v / v_f).
+template <class S>
+SD_INLINE S actuator_force(const Model<S>& model, int k, const S& v) {
+  return model.damping[k] * v + model.friction[k] * friction_ramp(model, k, v);
 }
 
 }  // namespace detail

@@ -67,6 +67,9 @@ struct Data {
   MatrixX<S> C;       // coriolis_matrix output
   VectorX<S> momentum;                     // generalized_momentum output, p = M q̇
   VectorX<S> coriolis_transpose_velocity;  // coriolis_transpose_times_velocity output, Cᵀ q̇
+  MatrixX<S> Y;          // joint_torque_regressor output (nv × 10 N), τ = Y π + armature ⊙ q̈
+  MatrixX<S> Y_payload;  // payload_regressor output (nv × 10): a payload's π to its joint forces
+  MatrixX<S> Y_actuator;  // payload_regressor's actuator columns (nv × 3): row k (q̈_k, q̇_k, ramp_k)
 
   // Zero inputs for the RNEA special cases (gravity torques, nonlinear effects).
   VectorX<S> zero_v;
@@ -108,6 +111,9 @@ struct Data {
         C(MatrixX<S>::Zero(model.nv, model.nv)),
         momentum(VectorX<S>::Zero(model.nv)),
         coriolis_transpose_velocity(VectorX<S>::Zero(model.nv)),
+        Y(MatrixX<S>::Zero(model.nv, 10 * (model.nbodies() - 1))),
+        Y_payload(MatrixX<S>::Zero(model.nv, 10)),
+        Y_actuator(MatrixX<S>::Zero(model.nv, 3)),
         zero_v(VectorX<S>::Zero(model.nv)),
         actuator_force(VectorX<S>::Zero(model.nv)),
         actuator_effort(VectorX<S>::Zero(model.nv)),

@@ -13,6 +13,8 @@
 
 #include "spatial_dynamics/model/frame.hpp"
 #include "spatial_dynamics/model/joint.hpp"
+#include "spatial_dynamics/model/physical_inertia.hpp"
+#include "spatial_dynamics/spatial/eigen_types.hpp"
 #include "spatial_dynamics/spatial/plucker_transform.hpp"
 #include "spatial_dynamics/spatial/rigid_inertia.hpp"
 
@@ -92,6 +94,32 @@ struct Model {
         names.push_back(std::move(name));
     }
     return names;
+  }
+
+  /// The bodies' inertial parameters π (10 per body 1..N, in body order; RigidInertia::toParameters):
+  /// τ = Y π with Y the joint-torque regressor (algorithms/regressor.hpp).
+  VectorX<S> inertial_parameters() const {
+    VectorX<S> pi(10 * (nbodies() - 1));
+    for (int i = 1; i < nbodies(); ++i) inertia[i].toParameters(pi.data() + 10 * (i - 1));
+    return pi;
+  }
+
+  /// Sets every body's inertia from π (inertial_parameters' layout). Throws std::invalid_argument,
+  /// leaving the model as it was, for a wrong length or a body that is not physical (finite, mass
+  /// ≥ 0, rotational inertia about the centre of mass positive semi-definite with the triangle
+  /// inequality; a massless body with no first moment and no rotational inertia), naming its link.
+  void set_inertial_parameters(const VectorX<S>& pi) {
+    if (pi.size() != 10 * (nbodies() - 1))
+      throw std::invalid_argument("inertial parameters: " + std::to_string(pi.size()) + " values for " +
+                                  std::to_string(nbodies() - 1) + " bodies (10 each)");
+    std::vector<RigidInertia<S>> bodies(inertia.begin(), inertia.end());
+    for (int i = 1; i < nbodies(); ++i) {
+      const RigidInertia<S> body = RigidInertia<S>::FromParameters(pi.data() + 10 * (i - 1));
+      const std::string problem = rigid_inertia_problem(body);
+      if (!problem.empty()) throw std::invalid_argument("inertial parameters of link '" + body_names[i] + "': " + problem);
+      bodies[i] = body;
+    }
+    inertia = std::move(bodies);
   }
 
   /// Sizes the actuator terms for nv coordinates with their defaults (no actuator dynamics).

@@ -32,4 +32,26 @@ inline std::string inertia_problem(double mass, const Eigen::Vector3d& center_of
   return {};
 }
 
+/// As inertia_problem for a body given by its ten parameters about its frame origin (eq. 25): a
+/// body with mass must have a physical inertia about its centre of mass; a massless one no first
+/// moment and no rotational inertia (there is no such body otherwise).
+template <class Body>
+std::string rigid_inertia_problem(const Body& body) {
+  const double mass = static_cast<double>(body.mass);
+  Eigen::Vector3d h;
+  Eigen::Matrix3d inertia_about_origin;
+  for (int r = 0; r < 3; ++r) {
+    h[r] = static_cast<double>(body.first_moment[r]);
+    for (int c = 0; c < 3; ++c) inertia_about_origin(r, c) = static_cast<double>(body.rotational_inertia(r, c));
+  }
+  if (!h.allFinite() || !inertia_about_origin.allFinite() || !std::isfinite(mass))
+    return "a parameter is not finite";
+  if (mass == 0.0)
+    return h.isZero(0.0) && inertia_about_origin.isZero(0.0) ? "" : "zero mass with a first moment or a rotational inertia";
+  if (mass < 0.0) return inertia_problem(mass, h, inertia_about_origin);
+  const Eigen::Vector3d c = h / mass;  // Ī_c = Ī_O + m (c cᵀ − c·c 1)   (eq. 25 solved for Ī_c)
+  const Eigen::Matrix3d about_com = inertia_about_origin + mass * (c * c.transpose() - c.squaredNorm() * Eigen::Matrix3d::Identity());
+  return inertia_problem(mass, c, about_com);
+}
+
 }  // namespace spatial_dynamics

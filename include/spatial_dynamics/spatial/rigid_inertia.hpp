@@ -106,6 +106,45 @@ struct RigidInertia {
     return r;
   }
 
+  /// The ten inertial parameters π = (m, h_x, h_y, h_z, I_xx, I_xy, I_yy, I_xz, I_yz, I_zz), h = m c
+  /// and I = Ī_O about the frame origin (eq. 25; Pinocchio's order), written to out[0 .. 10).
+  void toParameters(S* out) const {
+    out[0] = mass;
+    for (int k = 0; k < 3; ++k) out[1 + k] = first_moment[k];
+    const Mat3<S>& I = rotational_inertia;
+    out[4] = I(0, 0), out[5] = I(0, 1), out[6] = I(1, 1), out[7] = I(0, 2), out[8] = I(1, 2), out[9] = I(2, 2);
+  }
+
+  /// The body with the ten parameters π at p[0 .. 10) (toParameters' order).
+  static RigidInertia FromParameters(const S* p) {
+    const Vec3<S> row_x(p[4], p[5], p[7]), row_y(p[5], p[6], p[8]), row_z(p[7], p[8], p[9]);
+    return RigidInertia(p[0], Vec3<S>(p[1], p[2], p[3]), Mat3<S>(row_x, row_y, row_z));  // symmetric: columns = rows
+  }
+
+  /// The columns of f = I a + v ×* I v (eqs. 25 and 29) as a function of π: f = Σ_k cols[k] π_k.
+  /// With ω, v_O the parts of v and ω̇, a_O those of a, and g = a_O + ω × v_O:
+  ///   m: (0 ; g);   h along e_k: (e_k × g ; −e_k × ω̇ − ω × (e_k × ω));   Ī_O entry E: (E ω̇ + ω × E ω ; 0).
+  static void parameterColumns(const MotionVector<S>& v, const MotionVector<S>& a, ForceVector<S>* cols) {
+    const Vec3<S>& w = v.angular;
+    const Vec3<S>& w_dot = a.angular;
+    const Vec3<S> g = a.linear + cross(w, v.linear);
+    cols[0] = ForceVector<S>(Vec3<S>::Zero(), g);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3<S> e = Vec3<S>::Unit(k);
+      cols[1 + k] = ForceVector<S>(cross(e, g), -(cross(e, w_dot) + cross(w, cross(e, w))));
+    }
+    const int rows[6] = {0, 0, 1, 0, 1, 2}, columns[6] = {0, 1, 1, 2, 2, 2};  // I_xx, I_xy, I_yy, I_xz, I_yz, I_zz
+    for (int k = 0; k < 6; ++k) {
+      const int r = rows[k], c = columns[k];
+      Vec3<S> E_w_dot = Vec3<S>::Zero(), E_w = Vec3<S>::Zero();  // E has ones at (r, c) and (c, r)
+      E_w_dot[r] = w_dot[c];
+      E_w_dot[c] = w_dot[r];
+      E_w[r] = w[c];
+      E_w[c] = w[r];
+      cols[4 + k] = ForceVector<S>(E_w_dot + cross(w, E_w), Vec3<S>::Zero());
+    }
+  }
+
   /// The 6×6 matrix of eq. (25).
   Matrix6<S> toMatrix() const {
     Matrix6<S> m;
