@@ -15,14 +15,16 @@ namespace bench {
 // actuator terms of benchmark_actuators.hpp (ours only).
 // Coriolis: coriolis_matrix; ObserverUpdate: one MomentumObserver::update (with the actuator terms),
 // its result p = M q̇ and u = τ_m − τ_a + Cᵀ q̇ − g (ours only).
+// Regressor: joint_torque_regressor, its result Y π against the reference's τ (ours only).
 enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk, RneaActuated, AbaActuated,
-                       Coriolis, ObserverUpdate };
+                       Coriolis, ObserverUpdate, Regressor };
 
 inline const std::vector<Algorithm>& all_algorithms() {
   static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::RneaBatch, Algorithm::Aba, Algorithm::AbaRefined,
                                              Algorithm::Crba,         Algorithm::CrbaCholesky,
                                              Algorithm::Gravity,      Algorithm::Fk,        Algorithm::RneaActuated,
-                                             Algorithm::AbaActuated,  Algorithm::Coriolis,  Algorithm::ObserverUpdate};
+                                             Algorithm::AbaActuated,  Algorithm::Coriolis,  Algorithm::ObserverUpdate,
+                                             Algorithm::Regressor};
   return all;
 }
 
@@ -41,6 +43,7 @@ inline const char* name(Algorithm a) {
     case Algorithm::AbaActuated: return "aba_actuated";
     case Algorithm::Coriolis: return "coriolis_matrix";
     case Algorithm::ObserverUpdate: return "observer_update";
+    case Algorithm::Regressor: return "joint_torque_regressor";
   }
   return "?";
 }

@@ -27,6 +27,8 @@
 #include "random_states.hpp"
 #include "reference.hpp"
 #include "spatial_dynamics_adapter.hpp"
+#include "spatial_dynamics/estimation/excitation_trajectory.hpp"
+#include "spatial_dynamics/estimation/payload_identification.hpp"
 #include "spatial_dynamics/synthetic/random_robot.hpp"
 #include "spatial_dynamics/reduction/reduce_model.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
@@ -667,6 +669,76 @@ std::string observer_targets(const std::vector<Row>& rows, const std::vector<Mod
   return s.str();
 }
 
+/// The joint-torque regressor against our RNEA (issue target: at most 4 × its time), ratios of the
+/// rows' medians in this run, with the error of Y π against the float128 RNEA.
+std::string regressor_targets(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
+  std::ostringstream s;
+  char line[512];
+  s << "| model | base | build | joint_torque_regressor (ns) | rnea (ns) | ratio | target | met | Y π error (max) | "
+       "rnea error (max) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ModelSpec& m : specs) {
+    if (!m.kept_joints.empty()) continue;
+    for (const char* library : {"spatial_dynamics", "spatial_dynamics_default_build"}) {
+      const Row* regressor = find(rows, library, "joint_torque_regressor", m.name, m.base);
+      const Row* rnea = find(rows, library, "rnea", m.name, m.base);
+      if (!regressor || !rnea) continue;
+      const double ratio = regressor->ns_median / rnea->ns_median;
+      std::snprintf(line, sizeof line, "| %s | %s | %s | %.0f | %.0f | %.2f | 4.00 | %s | %.2g | %.2g |\n", m.name.c_str(),
+                    m.base.c_str(), std::string(library) == "spatial_dynamics" ? "native" : "default",
+                    regressor->ns_median, rnea->ns_median, ratio, ratio <= 4.0 ? "yes" : "**no**", regressor->max_err,
+                    rnea->max_err);
+      s << line;
+    }
+  }
+  return s.str();
+}
+
+/// One identify_payload of 4,000 samples on the panda (20 s of the excitation trajectory at 200 Hz,
+/// exact efforts of a 2.1 kg tool on panda_link8): wall time, median (min–max) of 7 runs, target
+/// 0.5 s, and the relative error of the identified parameters.
+std::string identification_timing(const std::vector<ModelSpec>& specs) {
+  const auto panda = std::find_if(specs.begin(), specs.end(), [](const ModelSpec& m) { return m.name == "panda" && m.base == "fixed"; });
+  if (panda == specs.end()) return "(no panda among the models)\n";
+  const sd::Model<double> model = sd::build_model_from_urdf_file(panda->path);
+  sd::Payload tool;
+  tool.mass = 2.1;
+  tool.center_of_mass = Eigen::Vector3d(0.012, -0.021, 0.085);
+  tool.inertia = Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal();
+  const sd::Model<double> truth = sd::with_payloads(model, {{"panda_link8", tool}});
+  std::vector<std::string> joints;
+  for (int k = 1; k <= 7; ++k) joints.push_back("panda_joint" + std::to_string(k));
+  sd::ExcitationOptions options;
+  options.sample_period = 0.005;
+  options.frame = "panda_link8";
+  const sd::Excitation e = sd::excitation_trajectory(model, joints, 19.995, options);
+  const int n = static_cast<int>(e.time.size());
+  sd::PayloadSamples samples{Eigen::MatrixXd::Zero(model.nq, n), Eigen::MatrixXd::Zero(model.nv, n),
+                             Eigen::MatrixXd::Zero(model.nv, n), Eigen::MatrixXd::Zero(model.nv, n)};
+  samples.position.topRows(7) = e.position;
+  samples.velocity.topRows(7) = e.velocity;
+  samples.acceleration.topRows(7) = e.acceleration;
+  sd::Data<double> data(model);
+  for (int k = 0; k < n; ++k)
+    samples.effort.col(k) = sd::rnea(truth, data, samples.position.col(k), samples.velocity.col(k), samples.acceleration.col(k));
+  std::vector<double> seconds;
+  sd::PayloadIdentification result;
+  for (int run = 0; run < 7; ++run) {
+    const auto start = Clock::now();
+    result = sd::identify_payload(model, data, "panda_link8", samples);
+    seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  std::sort(seconds.begin(), seconds.end());
+  sd::InertialParameters truth_pi;
+  sd::payload_inertia("panda_link8", tool).toParameters(truth_pi.data());
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "| panda | %d | %.3f (%.3f–%.3f) | 0.5 | %s | %.2g | %.3g |\n", n, seconds[3], seconds[0], seconds[6],
+                seconds[3] <= 0.5 ? "yes" : "**no**", (result.parameters - truth_pi).norm() / truth_pi.norm(),
+                result.condition_number);
+  return std::string("| model | samples | seconds, median (min–max) of 7 | target | met | parameter error | condition number |\n"
+                     "|---|---|---|---|---|---|---|\n") + line;
+}
+
 /// Forward dynamics against KDL in the package's default build (run-time dispatch), at 0.7 × the
 /// best peer's ABA: over ChainFdSolver_RNE on the serial models ≤ 0.21 (RBDL-clang's ABA ≈ 0.30 × KDL's
 /// forward dynamics on the UR5) and, where KDL has no forward dynamics, over TreeIdSolver_RNE on panda
@@ -716,7 +788,7 @@ std::string our_build_flags(const Settings& settings) {
 }
 
 void write_markdown(const std::string& path, const std::vector<Row>& rows, const std::vector<ModelSpec>& specs,
-                    const std::vector<std::string>& load_failures, const Settings& settings) {
+                    const std::vector<std::string>& load_failures, const Settings& settings, const std::string& identification) {
   std::ostringstream s;
   s << "# Speed against error\n\n"
     << "Errors: norm-wise relative error ‖x − x_ref‖/‖x_ref‖ (Frobenius for M; for FK the stacked rotation matrices and "
@@ -757,6 +829,10 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
        "u = τ_m − τ_a + Cᵀ q̇ − g stacked, τ_m the state's τ) against our own rows of the same run: C within 2 × the "
        "CRBA's time, an update within one RNEA plus one CRBA (doc/external_torques.md).\n\n"
     << observer_targets(rows, specs) << "\n";
+  s << "## Joint-torque regressor and payload identification\n\n`joint_torque_regressor` (Y, with Y π against the "
+       "float128 RNEA) against our `rnea` of the same run, target 4 × its time; and one `identify_payload` of 4,000 "
+       "samples on the panda (doc/payload_identification.md), target 0.5 s.\n\n"
+    << regressor_targets(rows, specs) << "\n" << identification << "\n";
   if (settings.default_build)
     s << "## The default build against -march=native\n\nThe package's default build (`spatial_dynamics_default_build`: "
          "libspatial_dynamics, its " << sd::simd_backend() << " instances chosen at run time) over our -march=native rows, "
@@ -835,11 +911,14 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  const std::string identification = identification_timing(specs);
   write_csv(settings.out + "/results.csv", rows);
-  write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings);
+  write_markdown(settings.out + "/results.md", rows, specs, load_failures, settings, identification);
   std::printf("\nSpeed targets\n\n%s\n", speed_targets(rows, specs).c_str());
   std::printf("\nForward dynamics against KDL, default build\n\n%s\n", forward_dynamics_targets(rows, specs, settings).c_str());
   std::printf("\nCoriolis matrix and momentum observer\n\n%s\n", observer_targets(rows, specs).c_str());
+  std::printf("\nJoint-torque regressor and payload identification\n\n%s\n%s\n", regressor_targets(rows, specs).c_str(),
+              identification.c_str());
   if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
   std::printf("\nActuator rows against the rigid-body rows\n\n%s\n",
               actuated_rows(rows).c_str());

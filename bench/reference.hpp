@@ -60,6 +60,7 @@ class Reference {
   const VectorQ& of(Algorithm a) const {
     switch (a) {
       case Algorithm::Rnea:
+      case Algorithm::Regressor:
       case Algorithm::RneaBatch: return tau_;
       case Algorithm::Gravity: return g_;
       case Algorithm::Crba: return M_;

@@ -21,7 +21,7 @@ class SpatialDynamicsAdapter : public Adapter {
       : model_(model.cast<S>()), actuated_model_(with_benchmark_actuators(model).cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
         batch_tau_(model_.nv, kBatchStates),
         observer_(actuated_model_, spatial_dynamics::VectorX<S>::Constant(model_.nv, S(50))),
-        observer_result_(2 * model_.nv) {}
+        observer_result_(2 * model_.nv), parameters_(model_.inertial_parameters()) {}
 
   std::string library() const override { return "spatial_dynamics"; }
   std::string scalar() const override { return std::is_same<S, float>::value ? "float" : "double"; }
@@ -47,6 +47,7 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::AbaActuated: return "forward_dynamics_actuated (armature, damping, friction; ABA)";
       case Algorithm::Coriolis: return "coriolis_matrix";
       case Algorithm::ObserverUpdate: return "MomentumObserver::update (armature, damping, friction; K = 50/s, 1 kHz)";
+      case Algorithm::Regressor: return "joint_torque_regressor (error of Y π)";
     }
     return "";
   }
@@ -97,6 +98,7 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::AbaActuated: sd::forward_dynamics_actuated(actuated_model_, data_, q_[k], qd_[k], tau_[k]); return;
       case Algorithm::Coriolis: sd::coriolis_matrix(model_, data_, q_[k], qd_[k]); return;
       case Algorithm::ObserverUpdate: observer_.update(q_[k], qd_[k], tau_[k], S(1e-3)); return;
+      case Algorithm::Regressor: sd::joint_torque_regressor(model_, data_, q_[k], qd_[k], qdd_[k]); return;
     }
   }
 
@@ -115,6 +117,7 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::ObserverUpdate:
         observer_result_ << observer_.momentum(), observer_.explained_momentum_rate();
         return observer_result_.template cast<double>();
+      case Algorithm::Regressor: return (data_.Y * parameters_).template cast<double>();
       case Algorithm::Fk: {
         Eigen::VectorXd poses(12 * (model_.nbodies() - 1));
         for (int i = 1; i < model_.nbodies(); ++i) {
@@ -143,6 +146,7 @@ class SpatialDynamicsAdapter : public Adapter {
   spatial_dynamics::MatrixX<S> batch_q_, batch_qd_, batch_qdd_, batch_tau_;
   spatial_dynamics::MomentumObserver<S> observer_;  // on actuated_model_
   spatial_dynamics::VectorX<S> observer_result_;
+  spatial_dynamics::VectorX<S> parameters_;  // π, for the regressor's Y π
 };
 
 }  // namespace bench

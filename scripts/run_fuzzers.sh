@@ -26,9 +26,9 @@ elif [[ "${1:-}" =~ ^[0-9]+$ ]]; then
   shift
 fi
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction service_handlers external_torques)
+[ ${#targets[@]} -gt 0 ] || targets=(urdf_builder scene_reduction service_handlers external_torques payload_identification)
 for t in "${targets[@]}"; do
-  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder, scene_reduction, service_handlers or external_torques)"
+  [ -f "fuzz/$t/fuzz_$t.cpp" ] || fail "unknown fuzz target '$t' (urdf_builder, scene_reduction, service_handlers, external_torques or payload_identification)"
 done
 
 bash scripts/install_fuzzing_dependencies.sh || fail "installing the fuzzing dependencies failed"
@@ -58,6 +58,7 @@ for t in "${targets[@]}"; do
   case "$t" in
     urdf_builder) options=(-max_len=8192 "-dict=fuzz/$t/$t.dict") ;;
     service_handlers) options=(-max_len=4096) ;;  # arrays up to thousands of entries
+    payload_identification) options=(-max_len=4096) ;;  # tens of points of several arrays
     *) options=(-max_len=512) ;;
   esac
   log="$build_dir/logs/$t.$mode.log"

@@ -12,8 +12,9 @@ DynamicsNode::DynamicsNode(const ros::NodeHandle& nh, const ros::NodeHandle& pri
       store_(read_node_config(private_nh_)),
       services_(private_nh_, loadedAtStartUp(), tf_frames_, read_source_),
       external_torques_(private_nh_, store_),
-      joint_states_(nh_, private_nh_, store_, external_torques_),
-      diagnostics_(nh_, private_nh_, store_, services_, joint_states_, external_torques_) {
+      payload_identification_(private_nh_, store_, recorder_),
+      joint_states_(nh_, private_nh_, store_, external_torques_, recorder_),
+      diagnostics_(nh_, private_nh_, store_, services_, joint_states_, external_torques_, payload_identification_) {
   services_.onReloaded([this] { external_torques_.reconfigure(); });
 }
 

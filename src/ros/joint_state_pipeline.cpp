@@ -7,8 +7,8 @@
 namespace spatial_dynamics {
 
 JointStatePipeline::JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store,
-                                       ExternalTorqueMonitor& external_torques)
-    : store_(store), external_torques_(external_torques), reported_time_(ros::WallTime::now()) {
+                                       ExternalTorqueMonitor& external_torques, JointStateRecorder& recorder)
+    : store_(store), external_torques_(external_torques), recorder_(recorder), reported_time_(ros::WallTime::now()) {
   for (const SceneConfig& scene : store_.config().scenes)
     computed_torques_.push_back(private_nh.advertise<sensor_msgs::JointState>(scene.resolve("computed_torques"), 1000));
   if (store_.config().inline_joint_states)
@@ -79,6 +79,7 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
   }
   if (published) torque_latency_us_.record((ros::Time::now() - event.getReceiptTime()).toSec() * 1e6);
   external_torques_.onJointStates(*msg, robot);
+  recorder_.add(*msg);
 }
 
 void JointStatePipeline::report(diagnostic_updater::DiagnosticStatusWrapper& status) {

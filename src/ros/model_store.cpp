@@ -148,6 +148,11 @@ bool ModelStore::reload(const SourceReader& source, std::string& message) {
   return true;
 }
 
+std::map<std::string, Payload> ModelStore::payloads() {
+  std::lock_guard<std::mutex> serialise(payload_mutex_);
+  return payloads_;
+}
+
 bool ModelStore::setPayload(const std::string& frame, const Payload& payload, std::string& message) {
   std::lock_guard<std::mutex> serialise(payload_mutex_);
   const std::shared_ptr<const ServedRobot> served = robot();

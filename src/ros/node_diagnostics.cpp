@@ -14,11 +14,13 @@ std::string simd_backend_or_error() {
 
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
                                  const ServiceEndpoints& services, JointStatePipeline& joint_states,
-                                 ExternalTorqueMonitor& external_torques)
+                                 ExternalTorqueMonitor& external_torques,
+                                 const PayloadIdentificationEndpoint& payload_identification)
     : store_(store),
       services_(services),
       joint_states_(joint_states),
       external_torques_(external_torques),
+      payload_identification_(payload_identification),
       updater_(nh, private_nh) {
   updater_.setHardwareID("none");
   updater_.add("Dynamics", this, &NodeDiagnostics::diagnose);
@@ -30,6 +32,7 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
   joint_states_.report(status);
   services_.report(status);
   external_torques_.report(status);
+  payload_identification_.report(status);
   std::string scene_errors;
   for (std::size_t k = 0; k < store_.sceneCount(); ++k) {
     const auto s = store_.scene(k);

@@ -32,12 +32,14 @@ from geometry_msgs.msg import Inertia, Point, Vector3, Wrench, WrenchStamped
 from std_srvs.srv import Trigger, TriggerRequest
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from spatial_dynamics.srv import (ForwardDynamics, ForwardDynamicsRequest, InverseDynamics, InverseDynamicsRequest,
-                                  InverseDynamicsTrajectory, InverseDynamicsTrajectoryRequest, MassMatrix,
+from spatial_dynamics.srv import (ExcitationTrajectory, ExcitationTrajectoryRequest, ForwardDynamics,
+                                  ForwardDynamicsRequest, IdentifyPayload, IdentifyPayloadRequest, InverseDynamics,
+                                  InverseDynamicsRequest, InverseDynamicsTrajectory, InverseDynamicsTrajectoryRequest, MassMatrix,
                                   MassMatrixRequest, SetPayload, SetPayloadRequest, TransformWrench,
                                   TransformWrenchRequest)
 
-__all__ = ['DynamicsClient', 'DynamicsError', 'JointValues', 'MassMatrixResult', 'TrajectoryResult', 'WrenchResult']
+__all__ = ['DynamicsClient', 'DynamicsError', 'ExcitationResult', 'JointValues', 'MassMatrixResult', 'PayloadResult',
+           'TrajectoryResult', 'WrenchResult']
 
 
 class DynamicsError(RuntimeError):
@@ -143,6 +145,43 @@ class TrajectoryResult(object):
         return collections.OrderedDict((name, k) for name, k in self.first_violation.items() if k >= 0)
 
 
+class ExcitationResult(object):
+    """An excitation trajectory: `names`; per point (rows) `time_from_start` (seconds), `positions`,
+    `velocities`, `accelerations` as (points x joints) numpy arrays; `condition_number`; `trajectory`
+    the trajectory_msgs/JointTrajectory to hand to a controller."""
+
+    def __init__(self, response):
+        self.trajectory = response.trajectory
+        self.names = list(response.trajectory.joint_names)
+        self.condition_number = response.condition_number
+        self.message = response.message
+        points = response.trajectory.points
+        self.time_from_start = np.array([p.time_from_start.to_sec() for p in points])
+        for field in ('positions', 'velocities', 'accelerations'):
+            setattr(self, field, np.array([list(getattr(p, field)) for p in points], dtype=float).reshape(len(points), len(self.names)))
+
+
+class PayloadResult(object):
+    """An identified payload: `mass` [kg], `center_of_mass` [m] in the frame, `inertia` [kg m^2] about
+    the centre of mass in the frame's axes (3x3), the same with `_stddev` (NaN where a parameter held
+    at the prior enters), `unidentifiable` (the held parameters), `residual_rms` (JointValues, per
+    joint whose efforts were used), `condition_number`, and with identify_friction `damping` and
+    `friction` (JointValues; else None)."""
+
+    def __init__(self, response):
+        def fields(m):
+            inertia = np.array([[m.ixx, m.ixy, m.ixz], [m.ixy, m.iyy, m.iyz], [m.ixz, m.iyz, m.izz]])
+            return m.m, np.array([m.com.x, m.com.y, m.com.z]), inertia
+        self.mass, self.center_of_mass, self.inertia = fields(response.inertia)
+        self.mass_stddev, self.center_of_mass_stddev, self.inertia_stddev = fields(response.stddev)
+        self.unidentifiable = list(response.unidentifiable)
+        self.residual_rms = JointValues(response.name, response.residual_rms)
+        self.condition_number = response.condition_number
+        self.damping = JointValues(response.name, response.damping) if response.damping else None
+        self.friction = JointValues(response.name, response.friction) if response.friction else None
+        self.message = response.message
+
+
 def _is_mapping(value):
     return isinstance(value, collections.abc.Mapping)
 
@@ -242,6 +281,8 @@ class DynamicsClient(object):
         'transform_wrench': TransformWrench,
         'set_payload': SetPayload,
         'reload': Trigger,
+        'excitation_trajectory': ExcitationTrajectory,
+        'identify_payload': IdentifyPayload,
     }
 
     def __init__(self, namespace='/dynamics', scene=None, persistent=False):
@@ -410,6 +451,27 @@ class DynamicsClient(object):
         request = SetPayloadRequest()
         request.frame = frame
         return self._call('set_payload', request).message
+
+    # --- payload identification (doc/payload_identification.md) ------------------------------
+
+    def excitation_trajectory(self, joints, duration, speed_scale=0.5, max_acceleration=0.0):
+        """A rest-to-rest motion of `joints` over `duration` seconds that reveals a payload, within
+        `speed_scale` of each joint's URDF velocity limit and position range and below
+        `max_acceleration` (0: none), as an ExcitationResult (points every 10 ms)."""
+        request = ExcitationTrajectoryRequest(joints=list(joints), duration=float(duration),
+                                              speed_scale=float(speed_scale), max_acceleration=float(max_acceleration))
+        return ExcitationResult(self._call('excitation_trajectory', request))
+
+    def identify_payload(self, frame, samples=None, record_seconds=0.0, identify_friction=False, apply=False):
+        """Identifies the payload on `frame` from `samples` (a trajectory_msgs/JointTrajectory whose
+        points carry positions, velocities, optional accelerations and the measured `effort`), or from
+        `record_seconds` of joint_states recorded by the node; with `apply` attaches it. Returns a
+        PayloadResult."""
+        request = IdentifyPayloadRequest(frame=frame, record_seconds=float(record_seconds),
+                                         identify_friction=bool(identify_friction), apply=bool(apply))
+        if samples is not None:
+            request.samples = samples
+        return PayloadResult(self._call('identify_payload', request))
 
     def reload(self):
         """Re-reads robot_description and ~gravity (std_srvs/Trigger). Returns the node's message."""

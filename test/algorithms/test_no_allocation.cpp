@@ -3,6 +3,7 @@
 
 #include "allocation_counter.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
+#include "spatial_dynamics/algorithms/regressor.hpp"
 #include "spatial_dynamics/estimation/external_wrench.hpp"
 #include "spatial_dynamics/estimation/momentum_observer.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
@@ -26,6 +27,7 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     const Eigen::VectorXd qdd = sd_test::random_vector(model.nv, rng);
     const std::vector<sd::ForceVector<double>> f_ext(model.nbodies(), sd::ForceVector<double>(Eigen::Matrix<double, 6, 1>::Ones()));
     const int frame = static_cast<int>(model.frames.size()) - 1;
+    const std::string& frame_name = model.frames[frame].name;
     sd::MomentumObserver<double> observer(model, Eigen::VectorXd::Constant(model.nv, 50.0));
 
     // The counter itself works: a direct call of operator new is counted (and cannot be elided).
@@ -50,6 +52,8 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::coriolis_matrix(model, data, q, qd);
     sd::generalized_momentum(model, data, q, qd);
     sd::external_wrench(model, data, q, frame, qdd);
+    sd::joint_torque_regressor(model, data, q, qd, qdd);
+    sd::payload_regressor(model, data, q, qd, qdd, frame_name);
     observer.update(q, qd, qdd, 1e-3);  // the first update after construction, then a second
     observer.update(q, qd, qdd, 1e-3);
     observer.tare();

@@ -407,6 +407,42 @@ class PythonClient(unittest.TestCase):
         qdd_arm = arm.forward_dynamics(q[index], qd[index], tau_arm.as_array())
         self.assertLessEqual(relative_error(qdd_arm.as_array(), qdd[index]), 1e-9)
 
+    def test_payload_identification_round_trip(self):
+        # efforts of the arm carrying a tool, computed by the node itself; then identified from them
+        arm = ['panda_joint%d' % k for k in range(1, 8)]
+        motion = self.client.excitation_trajectory(arm, 10.0, speed_scale=0.4)
+        self.assertEqual(motion.names, arm)
+        self.assertEqual(motion.positions.shape, (1001, 7))
+        self.assertLess(np.abs(motion.velocities[[0, -1]]).max(), 1e-12)
+        # the fingers where joint_states has them, at rest, named (joints left out would take their velocity)
+        fingers = [name for name in self.names if name not in arm]
+        samples = motion.trajectory
+        samples.joint_names = arm + fingers
+        for point in samples.points:
+            point.positions = list(point.positions) + [self.state_q[name] for name in fingers]
+            point.velocities = list(point.velocities) + [0.0] * len(fingers)
+            point.accelerations = list(point.accelerations) + [0.0] * len(fingers)
+        com, inertia = (0.01, -0.02, 0.08), np.diag([0.02, 0.03, 0.04])
+        self.client.set_payload('panda_link8', 1.7, com, inertia)
+        try:
+            loaded = self.client.inverse_dynamics_trajectory(samples)
+        finally:
+            self.client.clear_payload('panda_link8')
+        for point, effort in zip(samples.points, loaded.effort):
+            point.effort = [float(effort[loaded.names.index(name)]) for name in samples.joint_names]
+        result = self.client.identify_payload('panda_link8', samples)
+        self.assertAlmostEqual(result.mass, 1.7, places=6)
+        np.testing.assert_allclose(result.center_of_mass, com, atol=1e-7)
+        np.testing.assert_allclose(result.inertia, inertia, atol=1e-7)
+        self.assertEqual(result.unidentifiable, [])
+        self.assertEqual(list(result.residual_rms.keys()), arm + fingers)
+        self.assertIsNone(result.damping)
+        with self.assertRaises(DynamicsError) as caught:
+            self.client.identify_payload('no_such_frame', samples)
+        self.assertIn("'no_such_frame'", str(caught.exception))
+        with self.assertRaises(DynamicsError):
+            self.client.excitation_trajectory(arm, 10.0, speed_scale=2.0)
+
     def test_reload(self):
         q, qd, qdd = self.random_q(), self.random_v(), self.random_v()
         before = self.client.inverse_dynamics(q, qd, qdd).as_array()

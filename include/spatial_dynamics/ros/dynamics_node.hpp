@@ -3,8 +3,8 @@
 // scenes (reduced models), manages payloads, and publishes computed torques. It only wires its
 // parts, each with one job: the configuration (node_config.hpp), the models served
 // (model_store.hpp), the services (service_endpoints.hpp), the joint-state pipeline
-// (joint_state_pipeline.hpp), the external-torque estimate (external_torque_monitor.hpp) and
-// diagnostics (node_diagnostics.hpp). The arithmetic is the
+// (joint_state_pipeline.hpp), the external-torque estimate (external_torque_monitor.hpp), payload
+// identification (payload_identification_endpoint.hpp) and diagnostics (node_diagnostics.hpp). The arithmetic is the
 // library's; message ↔ vector translation is the service handlers' (service_handlers.hpp).
 #pragma once
 
@@ -16,6 +16,7 @@
 #include "spatial_dynamics/ros/joint_state_pipeline.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
 #include "spatial_dynamics/ros/node_diagnostics.hpp"
+#include "spatial_dynamics/ros/payload_identification_endpoint.hpp"
 #include "spatial_dynamics/ros/service_endpoints.hpp"
 #include "spatial_dynamics/ros/tf_frames.hpp"
 
@@ -41,6 +42,8 @@ class DynamicsNode {
   // Destroyed in reverse: diagnostics, then joint_states (unsubscribed before the store goes).
   ServiceEndpoints services_;
   ExternalTorqueMonitor external_torques_;
+  JointStateRecorder recorder_;
+  PayloadIdentificationEndpoint payload_identification_;
   JointStatePipeline joint_states_;
   NodeDiagnostics diagnostics_;
 };

@@ -19,6 +19,7 @@
 #include <sensor_msgs/JointState.h>
 
 #include "spatial_dynamics/ros/external_torque_monitor.hpp"
+#include "spatial_dynamics/ros/joint_state_recorder.hpp"
 #include "spatial_dynamics/ros/inline_callback_queue.hpp"
 #include "spatial_dynamics/ros/latency_recorder.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
@@ -28,9 +29,9 @@ namespace spatial_dynamics {
 class JointStatePipeline {
  public:
   /// Subscribes joint_states under `nh` and advertises each scene's computed_torques under
-  /// `private_nh`; each merged message also goes to `external_torques`.
+  /// `private_nh`; each merged message also goes to `external_torques` and to `recorder`.
   JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store,
-                     ExternalTorqueMonitor& external_torques);
+                     ExternalTorqueMonitor& external_torques, JointStateRecorder& recorder);
   /// Stops joint_states first, so that no callback runs while the members it uses are destroyed.
   ~JointStatePipeline();
   JointStatePipeline(const JointStatePipeline&) = delete;
@@ -46,6 +47,7 @@ class JointStatePipeline {
 
   ModelStore& store_;
   ExternalTorqueMonitor& external_torques_;
+  JointStateRecorder& recorder_;
   std::vector<ros::Publisher> computed_torques_;  // one per scene
   InlineCallbackQueue queue_;
   ros::Subscriber subscriber_;

@@ -42,6 +42,9 @@ class ModelStore {
   /// removed where payload.mass is 0. The message says what was done or why not.
   bool setPayload(const std::string& frame, const Payload& payload, std::string& message);
 
+  /// The payloads attached now, by frame.
+  std::map<std::string, Payload> payloads();
+
   std::shared_ptr<const ServedRobot> robot() const;
   /// Scene k (0: the main services); null before a robot has loaded.
   std::shared_ptr<const ServedScene> scene(std::size_t k) const;

@@ -10,6 +10,7 @@
 #include "spatial_dynamics/ros/external_torque_monitor.hpp"
 #include "spatial_dynamics/ros/joint_state_pipeline.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
+#include "spatial_dynamics/ros/payload_identification_endpoint.hpp"
 #include "spatial_dynamics/ros/service_endpoints.hpp"
 
 namespace spatial_dynamics {
@@ -18,7 +19,7 @@ class NodeDiagnostics {
  public:
   NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
                   const ServiceEndpoints& services, JointStatePipeline& joint_states,
-                  ExternalTorqueMonitor& external_torques);
+                  ExternalTorqueMonitor& external_torques, const PayloadIdentificationEndpoint& payload_identification);
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -27,6 +28,7 @@ class NodeDiagnostics {
   const ServiceEndpoints& services_;
   JointStatePipeline& joint_states_;
   ExternalTorqueMonitor& external_torques_;
+  const PayloadIdentificationEndpoint& payload_identification_;
   diagnostic_updater::Updater updater_;
   ros::Timer timer_;
 };
