@@ -108,6 +108,12 @@ TEST_P(BackendsAgree, OnRandomStates) {
             VectorXd(avx2.aba_refined(model, data_avx2, ws_avx2, q, qd, tau, 8)), "aba_refined");
     compare(MatrixXd(sd::crba<double>(model, here, q)), MatrixXd(portable.crba(model, data_portable, q)),
             MatrixXd(avx2.crba(model, data_avx2, q)), "crba");
+    compare(MatrixXd(sd::joint_torque_regressor<double>(model, here, q, qd, qdd)),
+            MatrixXd(portable.joint_torque_regressor(model, data_portable, q, qd, qdd)),
+            MatrixXd(avx2.joint_torque_regressor(model, data_avx2, q, qd, qdd)), "joint_torque_regressor");
+    compare(MatrixXd(sd::payload_regressor<double>(model, here, q, qd, qdd, model.frames[frame].name)),
+            MatrixXd(portable.payload_regressor(model, data_portable, q, qd, qdd, model.frames[frame].name)),
+            MatrixXd(avx2.payload_regressor(model, data_avx2, q, qd, qdd, model.frames[frame].name)), "payload_regressor");
     compare(MatrixXd(sd::frame_jacobian<double>(model, here, q, frame, sd::ReferenceFrame::RootAligned)),
             MatrixXd(portable.frame_jacobian(model, data_portable, q, frame, sd::ReferenceFrame::RootAligned)),
             MatrixXd(avx2.frame_jacobian(model, data_avx2, q, frame, sd::ReferenceFrame::RootAligned)),

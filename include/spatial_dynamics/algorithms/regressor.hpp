@@ -12,6 +12,7 @@
 #include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
 #include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/compiled/compiled_functions.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/model/joints/body_joint.hpp"
 #include "spatial_dynamics/model/model.hpp"
@@ -19,20 +20,14 @@
 namespace spatial_dynamics {
 namespace detail {
 
-/// v_i and a_i (less the base's −a_g) in body coordinates, ^iX_0 and the columns of S_i in base
-/// coordinates, for every body.
+/// v_i and a_i (less the base's −a_g) in body coordinates — the RNEA's forward pass, run whole —
+/// then ^iX_0 and the columns of S_i in base coordinates, for every body.
 template <class S>
 void regressor_kinematics(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                           const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  check_length("q", q.size(), model.nq);
-  check_length("velocity", qd.size(), model.nv);
-  check_length("acceleration", qdd.size(), model.nv);
-  joint_sines_and_cosines(model, data, q.data());
-  data.v[0] = MotionVector<S>::Zero();
-  data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -model.gravity);  // a_0 = −a_g
+  rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));  // data.X_up, v, a
   data.X_base[0] = PluckerTransform<S>::Identity();
   for (int i = 1; i < model.nbodies(); ++i) {
-    body_motion(model, data, i, q.data(), qd.data(), qdd.data());
     const PluckerTransform<S>& X = data.X_base[i] = data.X_up[i] * data.X_base[model.parent[i]];  // ^iX_0
     for (int k = 0; k < model.joints[i].nv; ++k) data.S_base[i][k] = X.applyInverse(body_subspace_column(model, data, i, k));
   }

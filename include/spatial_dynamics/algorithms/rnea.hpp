@@ -15,20 +15,6 @@
 namespace spatial_dynamics {
 namespace detail {
 
-/// Body i's ^iX_λ, v_i and a_i from its parent's (RNEA's forward pass, eqs. 5.7–5.8); sin and cos
-/// of the joint angles computed before (joint_sines_and_cosines).
-template <class S>
-SD_INLINE void body_motion(const Model<S>& model, Data<S>& data, int i, const S* q, const S* qd, const S* qdd) {
-  const int lambda = model.parent[i];
-  const BodyJoint<S> J(model, data, i, q, qd, qdd);
-  J.visit([&](const auto& joint) SD_INLINE_LAMBDA {
-    // ^iX_λ,  v_i = X v_λ + S q̇,  a_i = X a_λ + S q̈ + c_J + v_i × S q̇
-    const PluckerTransform<S>& X = data.X_up[i] = joint.transform(J.X_tree, J.q, J.s, J.c, J.label);
-    data.v[i] = X.apply(data.v[lambda]) + joint.motion(J.qd, J.s, J.c);
-    data.a[i] = X.apply(data.a[lambda]) + joint.motion(J.qdd, J.s, J.c) + joint.velocity_product(data.v[i], J.qd, J.s, J.c);
-  });
-}
-
 /// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈) into
 /// data.tau (RBDA Table 5.1). Per body, in data: ^iX_λ, v, a and f. τ is stored, or accumulated
 /// where a coupled joint shares its master's coordinate (τ zeroed first); the model's armature
@@ -44,7 +30,15 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
   data.v[0] = MotionVector<S>::Zero();
   data.a[0] = MotionVector<S>(Vector3<S>::Zero(), -gravity);  // a_0 = −a_g
   for (int i = 1; i < model.nbodies(); ++i) {
-    body_motion(model, data, i, q.data(), qd.data(), qdd.data());
+    const int lambda = model.parent[i];
+    const BodyJoint<S> J(model, data, i, q.data(), qd.data(), qdd.data());
+    J.visit([&](const auto& joint) SD_INLINE_LAMBDA {
+      // ^iX_λ,  v_i = X v_λ + S q̇,  a_i = X a_λ + S q̈ + c_J + v_i × S q̇  (eqs. 5.7–5.8)
+      const PluckerTransform<S>& X = data.X_up[i] = joint.transform(J.X_tree, J.q, J.s, J.c, J.label);
+      data.v[i] = X.apply(data.v[lambda]) + joint.motion(J.qd, J.s, J.c);
+      data.a[i] = X.apply(data.a[lambda]) + joint.motion(J.qdd, J.s, J.c) +
+                  joint.velocity_product(data.v[i], J.qd, J.s, J.c);
+    });
     // f_i = I a_i + v_i ×* I v_i − f_ext,i  (eq. 5.9)
     const RigidInertia<S>& I = model.inertia[i];
     data.f[i] = I * data.a[i] + I.biasForce(data.v[i]);

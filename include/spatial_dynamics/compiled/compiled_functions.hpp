@@ -3,6 +3,7 @@
 // so that a call in double binds to the library's function wherever the template is visible.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "spatial_dynamics/algorithms/input_checks.hpp"
