@@ -18,8 +18,9 @@ namespace detail {
 /// τ = ID(q, q̇, q̈, f_ext) under gravity a_g (the model's, or another: zero for M q̈) into
 /// data.tau (RBDA Table 5.1). Per body, in data: ^iX_λ, v, a and f. τ is stored, or accumulated
 /// where a coupled joint shares its master's coordinate (τ zeroed first); the model's armature
-/// adds its rotor inertia (RBDA §7.3).
-template <class S>
+/// adds its rotor inertia (RBDA §7.3). kKinematicsOnly: the forward pass's ^iX_λ, v and a alone (the
+/// regressors'), data.f and data.tau left as they were.
+template <class S, bool kKinematicsOnly = false>
 const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q,
                             const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd, const ForceVector<S>* f_ext,
                             const Vector3<S>& gravity) {
@@ -39,11 +40,13 @@ const VectorX<S>& rnea_impl(const Model<S>& model, Data<S>& data, const ConstVec
       data.a[i] = X.apply(data.a[lambda]) + joint.motion(J.qdd, J.s, J.c) +
                   joint.velocity_product(data.v[i], J.qd, J.s, J.c);
     });
+    if constexpr (kKinematicsOnly) continue;
     // f_i = I a_i + v_i ×* I v_i − f_ext,i  (eq. 5.9)
     const RigidInertia<S>& I = model.inertia[i];
     data.f[i] = I * data.a[i] + I.biasForce(data.v[i]);
     if (f_ext) data.f[i] -= f_ext[i];
   }
+  if constexpr (kKinematicsOnly) return data.tau;
   // τ_i = Sᵢᵀ f_i,  f_λ += ^iX_λᵀ f_i  (eqs. 5.10–5.11)
   if (model.has_coupled_joints) data.tau.setZero();
   for (int i = model.nbodies() - 1; i >= 1; --i) {

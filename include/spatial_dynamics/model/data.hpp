@@ -21,6 +21,7 @@ struct Data {
   // Kinematics, per body.
   std::vector<PluckerTransform<S>> X_up;    // ^iX_λ(i) = X_J(q_i) X_tree(i)
   std::vector<PluckerTransform<S>> X_base;  // ^iX_0: base coordinates → body i coordinates
+  std::vector<PluckerTransform<S>> X_root;  // ^iX_r, r the root body of i's tree (the regressors)
   std::vector<PluckerTransform<S>> X_frame_base;  // ^FX_0 for every model frame
   std::vector<MotionVector<S>> v;           // body velocities (body coordinates)
   std::vector<MotionVector<S>> a;           // body accelerations, less the base's −a_g (RNEA, ABA;
@@ -33,6 +34,7 @@ struct Data {
                                             // origin; coriolis_matrix: about the base origin)
   std::vector<std::array<MotionVector<S>, 6>> S_base;  // the columns of S in base axes (first nv used;
                                                        // about the same point as Iᶜ)
+  std::vector<std::array<MotionVector<S>, 6>> S_root;  // the columns of S in root coordinates (X_root)
   // Coriolis matrix (coriolis.hpp), in base coordinates about the base origin: body velocities,
   // the columns of Ṡ, and per subtree İᶜ = Σ İ and the momentum hᶜ = Σ I v.
   std::vector<MotionVector<S>> v_base;
@@ -67,7 +69,8 @@ struct Data {
   MatrixX<S> C;       // coriolis_matrix output
   VectorX<S> momentum;                     // generalized_momentum output, p = M q̇
   VectorX<S> coriolis_transpose_velocity;  // coriolis_transpose_times_velocity output, Cᵀ q̇
-  MatrixX<S> Y;          // joint_torque_regressor output (nv × 10 N), τ = Y π + armature ⊙ q̈
+  RowMajorMatrixX<S> Y;  // joint_torque_regressor output (nv × 10 N), τ = Y π + armature ⊙ q̈; by row, so
+                         // that a body's ten entries of a joint's row are adjacent
   MatrixX<S> Y_payload;  // payload_regressor output (nv × 10): a payload's π to its joint forces
   MatrixX<S> Y_actuator;  // payload_regressor's actuator columns (nv × 3): row k (q̈_k, q̇_k, ramp_k)
 
@@ -84,6 +87,7 @@ struct Data {
   explicit Data(const Model<S>& model)
       : X_up(model.nbodies()),
         X_base(model.nbodies()),
+        X_root(model.nbodies()),
         X_frame_base(model.frames.size()),
         v(model.nbodies(), MotionVector<S>::Zero()),
         a(model.nbodies(), MotionVector<S>::Zero()),
@@ -92,6 +96,7 @@ struct Data {
         h(model.nbodies(), ForceVector<S>::Zero()),
         Ic(model.nbodies()),
         S_base(model.nbodies()),
+        S_root(model.nbodies()),
         v_base(model.nbodies(), MotionVector<S>::Zero()),
         S_rate_base(model.nbodies()),
         Ic_rate(model.nbodies()),
@@ -111,7 +116,7 @@ struct Data {
         C(MatrixX<S>::Zero(model.nv, model.nv)),
         momentum(VectorX<S>::Zero(model.nv)),
         coriolis_transpose_velocity(VectorX<S>::Zero(model.nv)),
-        Y(MatrixX<S>::Zero(model.nv, 10 * (model.nbodies() - 1))),
+        Y(RowMajorMatrixX<S>::Zero(model.nv, 10 * (model.nbodies() - 1))),
         Y_payload(MatrixX<S>::Zero(model.nv, 10)),
         Y_actuator(MatrixX<S>::Zero(model.nv, 3)),
         zero_v(VectorX<S>::Zero(model.nv)),

@@ -25,6 +25,7 @@ template <class S> using Vector6 = Eigen::Matrix<S, 6, 1>;
 template <class S> using Matrix6 = Eigen::Matrix<S, 6, 6>;
 template <class S> using VectorX = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 template <class S> using MatrixX = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+template <class S> using RowMajorMatrixX = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 template <class S> using Matrix6X = Eigen::Matrix<S, 6, Eigen::Dynamic>;
 
 /// a × b of two 3-vectors, the same arithmetic as Eigen's cross(), but forced inline: Eigen's is

@@ -121,28 +121,32 @@ struct RigidInertia {
     return RigidInertia(p[0], Vec3<S>(p[1], p[2], p[3]), Mat3<S>(row_x, row_y, row_z));  // symmetric: columns = rows
   }
 
-  /// The columns of f = I a + v ×* I v (eqs. 25 and 29) as a function of π: f = Σ_k cols[k] π_k.
-  /// With ω, v_O the parts of v and ω̇, a_O those of a, and g = a_O + ω × v_O:
-  ///   m: (0 ; g);   h along e_k: (e_k × g ; −e_k × ω̇ − ω × (e_k × ω));   Ī_O entry E: (E ω̇ + ω × E ω ; 0).
-  static void parameterColumns(const MotionVector<S>& v, const MotionVector<S>& a, ForceVector<S>* cols) {
-    const Vec3<S>& w = v.angular;
-    const Vec3<S>& w_dot = a.angular;
-    const Vec3<S> g = a.linear + cross(w, v.linear);
-    cols[0] = ForceVector<S>(Vec3<S>::Zero(), g);
-    for (int k = 0; k < 3; ++k) {
-      const Vec3<S> e = Vec3<S>::Unit(k);
-      cols[1 + k] = ForceVector<S>(cross(e, g), -(cross(e, w_dot) + cross(w, cross(e, w))));
-    }
-    const int rows[6] = {0, 0, 1, 0, 1, 2}, columns[6] = {0, 1, 1, 2, 2, 2};  // I_xx, I_xy, I_yy, I_xz, I_yz, I_zz
-    for (int k = 0; k < 6; ++k) {
-      const int r = rows[k], c = columns[k];
-      Vec3<S> E_w_dot = Vec3<S>::Zero(), E_w = Vec3<S>::Zero();  // E has ones at (r, c) and (c, r)
-      E_w_dot[r] = w_dot[c];
-      E_w_dot[c] = w_dot[r];
-      E_w[r] = w[c];
-      E_w[c] = w[r];
-      cols[4 + k] = ForceVector<S>(E_w_dot + cross(w, E_w), Vec3<S>::Zero());
-    }
+  /// The columns of f = I a + v ×* I v (eqs. 25 and 29) as a function of π, f = Σ_k A_k π_k, by
+  /// component: row k of `moments` is A_k's moment (rows 0–9; rows 10–11 are left as they are, for
+  /// callers that pad to whole SIMD packets), row k of `forces` its force (k = 0–3; the six Ī columns
+  /// are couples). With ω, v_O the parts of v, ω̇, a_O those of a, and g = a_O + ω × v_O:
+  ///   m: (0 ; g);   h along e_k: (e_k × g ; ω̇ × e_k − |ω|² e_k + ω_k ω);   Ī_O entry E: (E ω̇ + ω × E ω ; 0),
+  /// written out per entry of E (ones at (r, c) and (c, r)).
+  static void parameterColumns(const MotionVector<S>& v, const MotionVector<S>& a, Eigen::Matrix<S, 12, 3>& moments,
+                               Eigen::Matrix<S, 4, 3>& forces) {
+    const Vector3<S> w = v.angular.eigen(), w_dot = a.angular.eigen();
+    const Vector3<S> g = (a.linear + cross(v.angular, v.linear)).eigen();
+    const S wx = w[0], wy = w[1], wz = w[2], ax = w_dot[0], ay = w_dot[1], az = w_dot[2];
+    const S xx = wx * wx, yy = wy * wy, zz = wz * wz, xy = wx * wy, xz = wx * wz, yz = wy * wz;
+    moments.template topRows<4>() << S(0), S(0), S(0),
+                                     S(0), -g[2], g[1],
+                                     g[2], S(0), -g[0],
+                                     -g[1], g[0], S(0);
+    forces << g[0], g[1], g[2],
+              -(yy + zz), az + xy, xz - ay,
+              xy - az, -(xx + zz), ax + yz,
+              xz + ay, yz - ax, -(xx + yy);
+    moments.template middleRows<6>(4) << ax, xz, -xy,          // I_xx
+                                         ay - xz, ax + yz, xx - yy,  // I_xy
+                                         -yz, ay, xy,          // I_yy
+                                         az + xy, zz - xx, ax - yz,  // I_xz
+                                         yy - zz, az - xy, ay + xz,  // I_yz
+                                         yz, -xz, az;          // I_zz
   }
 
   /// The 6×6 matrix of eq. (25).
