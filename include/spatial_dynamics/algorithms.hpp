@@ -3,6 +3,8 @@
 
 #include "spatial_dynamics/algorithms/aba.hpp"
 #include "spatial_dynamics/algorithms/actuator_dynamics.hpp"
+#include "spatial_dynamics/algorithms/centroidal.hpp"
+#include "spatial_dynamics/algorithms/contact_dynamics.hpp"
 #include "spatial_dynamics/algorithms/coriolis.hpp"
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/energy.hpp"

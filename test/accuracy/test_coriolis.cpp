@@ -24,6 +24,7 @@
 #include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "spatial_dynamics/reference/mass_matrix.hpp"
 #include "synthetic_robots.hpp"
+#include "configuration_path.hpp"
 #include "exact_rotations.hpp"
 #include "test_utils.hpp"
 
@@ -107,34 +108,11 @@ std::vector<Case> cases() {
 
 using sd_test::with_exact_rotations;
 
-/// q moved by t q̇: a free joint's position by t R v and its quaternion by exp(t ω / 2) (q̇ = (ω ; v)
-/// in the child's coordinates), every other coordinate by t q̇. First order along q̇, which is all
-/// a central difference needs.
-VectorQ moved(const sd::Model<Quad>& model, const VectorQ& q, const VectorQ& qd, const Quad& t) {
-  VectorQ out = q;
-  for (int i = 1; i < model.nbodies(); ++i) {
-    const sd::Joint<Quad>& j = model.joints[i];
-    if (j.coupled) continue;
-    if (j.type != sd::JointType::Free) {
-      for (int k = 0; k < j.nv; ++k) out[j.idx_q + k] += t * qd[j.idx_v + k];
-      continue;
-    }
-    const Eigen::Quaternion<Quad> quat(q[j.idx_q + 6], q[j.idx_q + 3], q[j.idx_q + 4], q[j.idx_q + 5]);
-    const Eigen::Matrix<Quad, 3, 1> w = qd.segment<3>(j.idx_v), v = qd.segment<3>(j.idx_v + 3);
-    out.segment<3>(j.idx_q) += t * (quat.toRotationMatrix() * v);
-    const Quad angle = w.norm() * t;
-    const Eigen::Quaternion<Quad> turn(Eigen::AngleAxis<Quad>(angle, angle != 0 ? Eigen::Matrix<Quad, 3, 1>(w.normalized()) : Eigen::Matrix<Quad, 3, 1>::UnitX()));
-    const Eigen::Quaternion<Quad> next = quat * turn;
-    out.segment<4>(j.idx_q + 3) << next.x(), next.y(), next.z(), next.w();
-  }
-  return out;
-}
-
 /// Ṁ along q̇ by central differences of the reference's M in float128 (step 1e-11: truncation
 /// ~1e-22, rounding ~1e-23).
 MatrixQ mass_matrix_rate(const sd::Model<Quad>& model, const VectorQ& q, const VectorQ& qd) {
   const Quad h("1e-11");
-  return (ref::mass_matrix(model, moved(model, q, qd, h)) - ref::mass_matrix(model, moved(model, q, qd, -h))) / (2 * h);
+  return (ref::mass_matrix(model, sd_test::advance(model, q, qd, h)) - ref::mass_matrix(model, sd_test::advance(model, q, qd, -h))) / (2 * h);
 }
 
 /// C_ij = Σ_k Γ_ijk q̇_k with Γ_ijk = ½ (∂_k M_ij + ∂_j M_ik − ∂_i M_jk) (Christoffel symbols of the

@@ -3,6 +3,8 @@
 
 #include "allocation_counter.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
+#include "spatial_dynamics/algorithms/centroidal.hpp"
+#include "spatial_dynamics/algorithms/contact_dynamics.hpp"
 #include "spatial_dynamics/algorithms/regressor.hpp"
 #include "spatial_dynamics/estimation/external_wrench.hpp"
 #include "spatial_dynamics/estimation/momentum_observer.hpp"
@@ -29,6 +31,8 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     const int frame = static_cast<int>(model.frames.size()) - 1;
     const std::string& frame_name = model.frames[frame].name;
     sd::MomentumObserver<double> observer(model, Eigen::VectorXd::Constant(model.nv, 50.0));
+    const sd::ContactSet<double> contacts(model, {model.frames[1].name, frame_name}, {"surface", "point"});
+    sd::ContactData<double> contact_data(model, contacts);
 
     // The counter itself works: a direct call of operator new is counted (and cannot be elided).
     const long before_sanity = bench::allocation_count();
@@ -54,6 +58,13 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::external_wrench(model, data, q, frame, qdd);
     sd::joint_torque_regressor(model, data, q, qd, qdd);
     sd::payload_regressor(model, data, q, qd, qdd, frame_name);
+    sd::contact_jacobian(model, data, contacts, contact_data, q, qd);
+    sd::inverse_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd);
+    sd::forward_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd);
+    sd::center_of_mass(model, data, q);
+    sd::center_of_mass_velocity(model, data, q, qd);
+    sd::center_of_mass_jacobian(model, data, q);
+    sd::centroidal_momentum(model, data, q, qd);
     observer.update(q, qd, qdd, 1e-3);  // the first update after construction, then a second
     observer.update(q, qd, qdd, 1e-3);
     observer.tare();

@@ -37,13 +37,11 @@ SD_INLINE void set_mass_entries(const Model<S>& model, Data<S>& data, int j, con
   }
 }
 
-/// M(q) into data.M (RBDA Table 6.2), in base axes about each body's own origin p_i: S̃_i = E_0iᵀ S_i
-/// and Ĩ_i = E_0iᵀ I_i E_0i (eq. 26 with r = 0); Iᶜ_i = Ĩ_i + Σ Iᶜ_j about p_i over the children
-/// (eq. 26 with E = 1); then for each column of S_i, F = Iᶜ_i S̃_i, M_ii = S̃ᵢᵀ F and, for every
-/// ancestor λ, M_λi = S̃_λᵀ F about p_λ. In these axes a column reaches an ancestor by moving its
-/// moment's reference point, not by a chain of transforms.
+/// The composite inertias in base axes about each body's own origin p_i (data.Ic) and the columns of
+/// S in the same axes (data.S_base): S̃_i = E_0iᵀ S_i and Ĩ_i = E_0iᵀ I_i E_0i (eq. 26 with r = 0);
+/// Iᶜ_i = Ĩ_i + Σ Iᶜ_j about p_i over the children (eq. 26 with E = 1). Also data.X_base.
 template <class S>
-void crba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+void composite_inertias(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
   check_length("q", q.size(), model.nq);
   joint_sines_and_cosines(model, data, q.data());
   data.X_base[0] = PluckerTransform<S>::Identity();
@@ -62,6 +60,14 @@ void crba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q)
     const int lambda = model.parent[i];
     if (lambda > 0) data.Ic[lambda] += data.Ic[i].aboutPoint(data.X_base[lambda].r - data.X_base[i].r);  // eq. 26
   }
+}
+
+/// M(q) into data.M (RBDA Table 6.2) from the composite inertias above: for each column of S_i,
+/// F = Iᶜ_i S̃_i, M_ii = S̃ᵢᵀ F and, for every ancestor λ, M_λi = S̃_λᵀ F about p_λ. In these axes a
+/// column reaches an ancestor by moving its moment's reference point, not by a chain of transforms.
+template <class S>
+void crba_impl(const Model<S>& model, Data<S>& data, const ConstVectorRef<S>& q) {
+  composite_inertias(model, data, q);
   if (model.has_coupled_joints) data.M.setZero();
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<S>& joint = model.joints[i];

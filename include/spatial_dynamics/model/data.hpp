@@ -66,6 +66,8 @@ struct Data {
   VectorX<S> qdd;     // aba output
   MatrixX<S> M;       // crba output (both triangles)
   Matrix6X<S> J;      // frame_jacobian output
+  Matrix6X<S> A_G;    // centroidal_momentum_matrix output: h_G = A_G q̇
+  MatrixX<S> J_com;   // center_of_mass_jacobian output (3 × nv): ċ = J_com q̇
   MatrixX<S> C;       // coriolis_matrix output
   VectorX<S> momentum;                     // generalized_momentum output, p = M q̇
   VectorX<S> coriolis_transpose_velocity;  // coriolis_transpose_times_velocity output, Cᵀ q̇
@@ -113,6 +115,8 @@ struct Data {
         qdd(VectorX<S>::Zero(model.nv)),
         M(MatrixX<S>::Zero(model.nv, model.nv)),
         J(Matrix6X<S>::Zero(6, model.nv)),
+        A_G(Matrix6X<S>::Zero(6, model.nv)),
+        J_com(MatrixX<S>::Zero(3, model.nv)),
         C(MatrixX<S>::Zero(model.nv, model.nv)),
         momentum(VectorX<S>::Zero(model.nv)),
         coriolis_transpose_velocity(VectorX<S>::Zero(model.nv)),

@@ -1,0 +1,342 @@
+// Contact-consistent dynamics (algorithms/contact_dynamics.hpp) and the centroidal quantities
+// (algorithms/centroidal.hpp) against an independent solution in float128:
+//  - frame poses from the reference's 6×6 transforms (reference/joint_model.hpp); J_c and J̇_c q̇ by
+//    central differences of the contact frames' poses along q(t) = q ⊕ t q̇ (a free joint's screw
+//    motion at constant body twist), so q̈ = 0 along it;
+//  - inverse dynamics with contacts: the reference's ID, λ by a dense pseudo-inverse of
+//    the base rows, τ = ID − J_cᵀ λ; forward dynamics: the reference's M and h, the KKT system
+//    [M J_cᵀ; J_c 0] solved densely by its pseudo-inverse (the minimum-norm λ when contacts are redundant),
+//    with the contacts at rest (q̇ projected onto J_c q̇ = 0, so that redundant constraints agree);
+//  - the centre of mass from the body poses, J_com and A_G from central differences of the body poses;
+// on talos (two surface feet; and a redundant set), solo12 (four point feet; two diagonal ones), a
+// floating double pendulum (one point), random states.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "spatial_dynamics/algorithms/centroidal.hpp"
+#include "spatial_dynamics/algorithms/contact_dynamics.hpp"
+#include "spatial_dynamics/reference/high_precision.hpp"
+#include "spatial_dynamics/reference/inverse_dynamics.hpp"
+#include "spatial_dynamics/reference/joint_model.hpp"
+#include "spatial_dynamics/reference/mass_matrix.hpp"
+#include "configuration_path.hpp"
+#include "exact_rotations.hpp"
+#include "test_utils.hpp"
+
+namespace sd = spatial_dynamics;
+namespace ref = spatial_dynamics::reference;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using sd::Quad;
+using VecQ = ref::VecX<Quad>;
+using MatQ = ref::MatX<Quad>;
+using Vec3Q = ref::Vec3<Quad>;
+using Mat3Q = ref::Mat3<Quad>;
+using Mat6Q = ref::Mat6<Quad>;
+
+namespace {
+
+struct Scene {
+  std::string name;
+  std::string urdf;
+  std::vector<std::string> frames, kinds;
+};
+
+std::vector<Scene> scenes() {
+  return {{"talos two surface feet", "talos.urdf", {"left_sole_link", "right_sole_link"}, {"surface", "surface"}},
+          {"talos redundant", "talos.urdf", {"left_sole_link", "leg_left_6_link", "right_sole_link"}, {"surface", "point", "surface"}},
+          {"solo12 four point feet", "solo12.urdf", {"FL_FOOT", "FR_FOOT", "HL_FOOT", "HR_FOOT"}, {"point", "point", "point", "point"}},
+          {"solo12 two diagonal feet", "solo12.urdf", {"FL_FOOT", "HR_FOOT"}, {"point", "point"}},
+          {"floating double pendulum", "double_pendulum.urdf", {"link2"}, {"point"}}};
+}
+
+sd::Model<double> floating_robot(const std::string& file) {
+  sd::ModelBuildOptions options;
+  options.floating_base = true;
+  return sd::build_model_from_urdf_file(sd_test::robot_path(file), options);
+}
+
+/// ^iX_0 of every body (6×6, motion), from the reference's ^iX_λ.
+std::vector<Mat6Q> body_transforms(const sd::Model<Quad>& model, const VecQ& q) {
+  std::vector<Mat6Q> X_up = ref::up_transforms(model, q), X_0(model.nbodies(), Mat6Q::Identity());
+  for (int i = 1; i < model.nbodies(); ++i) X_0[i] = X_up[i] * X_0[model.parent[i]];
+  return X_0;
+}
+
+/// ^FX_0 of a model frame.
+Mat6Q frame_transform(const sd::Model<Quad>& model, const std::vector<Mat6Q>& X_0, int frame) {
+  const sd::Frame<Quad>& f = model.frames[frame];
+  return ref::plucker(f.X_frame_body.E.eigen(), f.X_frame_body.r.eigen()) * X_0[f.body];
+}
+
+/// From ^BX_0 = [E 0; −E r× E]: B's axes in base coordinates (R = Eᵀ) and its origin r.
+void pose_of(const Mat6Q& X, Mat3Q& R, Vec3Q& r) {
+  const Mat3Q E = X.topLeftCorner<3, 3>();
+  R = E.transpose();
+  const Mat3Q r_cross = -R * X.bottomLeftCorner<3, 3>();
+  r = Vec3Q(r_cross(2, 1), r_cross(0, 2), r_cross(1, 0));
+}
+
+/// The velocity (ω; v) of B in B's axes from ^BX_0 at t ± h: (v×) = −Ẋ X⁻¹ (RBDA eq. 2.41's derivative).
+ref::Vec6<Quad> velocity_from(const Mat6Q& X_minus, const Mat6Q& X, const Mat6Q& X_plus, const Quad& h) {
+  const Mat6Q V = -((X_plus - X_minus) / (2 * h)) * X.inverse();
+  ref::Vec6<Quad> out;
+  out << V(2, 1), V(0, 2), V(1, 0), V(5, 1), V(3, 2), V(4, 0);
+  return out;
+}
+
+constexpr double kStep = 1e-9;  // central differences in float128: O(h²) = 1e-18, rounding 1e-34 / h
+
+/// J_c (contact axes) and J̇_c q̇ by central differences of the contact frames' poses.
+void contact_jacobian_by_differences(const sd::Model<Quad>& model, const sd::ContactSet<double>& contacts, const VecQ& q,
+                                     const VecQ& qd, MatQ& J, VecQ& Jdot_qd) {
+  const Quad h(kStep);
+  J = MatQ::Zero(contacts.rows, model.nv);
+  Jdot_qd = VecQ::Zero(contacts.rows);
+  const std::vector<Mat6Q> X0 = body_transforms(model, q);
+  for (int k = 0; k < model.nv; ++k) {
+    const VecQ e = VecQ::Unit(model.nv, k);
+    const std::vector<Mat6Q> Xm = body_transforms(model, sd_test::advance(model, q, e, -h)), Xp = body_transforms(model, sd_test::advance(model, q, e, h));
+    for (const sd::Contact<double>& c : contacts.contacts) {
+      const ref::Vec6<Quad> column = velocity_from(frame_transform(model, Xm, c.frame), frame_transform(model, X0, c.frame),
+                                                   frame_transform(model, Xp, c.frame), h);
+      const int n = sd::contact_rows(c.kind);
+      J.block(c.row, k, n, 1) = column.tail(n);
+    }
+  }
+  // Along q ⊕ t q̇ (q̈ = 0): the origin's acceleration (second difference of its position) and the angular
+  // acceleration (difference of the angular velocity), in the frame's axes at t = 0.
+  for (const sd::Contact<double>& c : contacts.contacts) {
+    Mat3Q R[5];
+    Vec3Q p[5];
+    for (int s = -2; s <= 2; ++s)
+      pose_of(frame_transform(model, body_transforms(model, sd_test::advance(model, q, qd, Quad(s) * h)), c.frame), R[s + 2], p[s + 2]);
+    const Vec3Q a = (p[3] - 2 * p[2] + p[1]) / (h * h);
+    auto omega = [&](int s) {  // ω in base axes at t = s h from R at (s ± 1) h
+      const Mat3Q W = ((R[s + 3] - R[s + 1]) / (2 * h)) * R[s + 2].transpose();
+      return Vec3Q(W(2, 1), W(0, 2), W(1, 0));
+    };
+    const Vec3Q alpha = (omega(1) - omega(-1)) / (2 * h);
+    ref::Vec6<Quad> classical;
+    classical << R[2].transpose() * alpha, R[2].transpose() * a;
+    const int n = sd::contact_rows(c.kind);
+    Jdot_qd.segment(c.row, n) = classical.tail(n);
+  }
+}
+
+/// The minimum-norm least-squares solution of A x = b, pinv(A) b, by a full-rank factorization A = B Z:
+/// B the columns of A that span its range (rank decided at 1e-12 relative, above the differences'
+/// rounding), Z = (BᵀB)⁻¹BᵀA of full row rank, pinv(A) = Zᵀ(ZZᵀ)⁻¹(BᵀB)⁻¹Bᵀ. (Eigen's SVDs, orthogonal
+/// decompositions and LDLT solves do not compile for Boost's float128 here; LU and LLT do.)
+VecQ pseudo_inverse_solve(const MatQ& A, const VecQ& b) {
+  Eigen::FullPivLU<MatQ> lu(A);
+  lu.setThreshold(Quad(1e-12));
+  const MatQ B = lu.image(A);
+  const Eigen::LLT<MatQ> BtB(B.transpose() * B);
+  const MatQ Z = BtB.solve(B.transpose() * A);
+  const VecQ y = BtB.solve(B.transpose() * b);
+  return Z.transpose() * MatQ(Z * Z.transpose()).llt().solve(y);
+}
+
+struct State {
+  VectorXd q, qd, qdd, tau;
+  VecQ Q, Qd, Qdd, Tau;
+};
+
+State random_state(const sd::Model<double>& model, std::mt19937& rng) {
+  State s;
+  s.Q = sd::to_quad(sd_test::random_configuration(model, rng));
+  for (int i = 1; i < model.nbodies(); ++i)
+    if (model.joints[i].type == sd::JointType::Free) s.Q.segment<4>(model.joints[i].idx_q + 3).normalize();
+  s.q = s.Q.cast<double>();
+  s.Q = sd::to_quad(s.q);
+  s.qd = sd_test::random_vector(model.nv, rng);
+  s.qdd = sd_test::random_vector(model.nv, rng);
+  s.tau = sd_test::random_vector(model.nv, rng, 5.0);
+  s.tau.head(6).setZero();  // the floating base is not actuated
+  s.Qd = sd::to_quad(s.qd);
+  s.Qdd = sd::to_quad(s.qdd);
+  s.Tau = sd::to_quad(s.tau);
+  return s;
+}
+
+}  // namespace
+
+TEST(ContactJacobian, MatchesDifferencesOfTheFramePoses) {
+  unsigned seed = 1;
+  for (const Scene& scene : scenes()) {
+    const sd::Model<double> model = floating_robot(scene.urdf);
+    const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
+    const sd::ContactSet<double> contacts(model, scene.frames, scene.kinds);
+    sd::Data<double> data(model);
+    sd::ContactData<double> cd(model, contacts);
+    std::mt19937 rng(seed++);
+    double worst_J = 0, worst_Jdot = 0;
+    for (int s = 0; s < 3; ++s) {
+      const State x = random_state(model, rng);
+      sd::contact_jacobian(model, data, contacts, cd, x.q, x.qd);
+      MatQ J;
+      VecQ Jdot_qd;
+      contact_jacobian_by_differences(oracle, contacts, x.Q, x.Qd, J, Jdot_qd);
+      worst_J = std::max(worst_J, sd::relative_error_to(cd.J, J));
+      worst_Jdot = std::max(worst_Jdot, sd::relative_error_to(cd.acceleration, Jdot_qd));
+    }
+    std::printf("[%s] J_c: %.3g, J̇_c q̇: %.3g\n", scene.name.c_str(), worst_J, worst_Jdot);
+    EXPECT_LT(worst_J, 1e-12) << scene.name;
+    EXPECT_LT(worst_Jdot, 1e-10) << scene.name;
+  }
+}
+
+TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) {
+  unsigned seed = 11;
+  for (const Scene& scene : scenes()) {
+    const sd::Model<double> model = floating_robot(scene.urdf);
+    const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
+    const sd::ContactSet<double> contacts(model, scene.frames, scene.kinds);
+    sd::Data<double> data(model);
+    sd::ContactData<double> cd(model, contacts);
+    std::mt19937 rng(seed++);
+    double worst_tau = 0, worst_lambda = 0, worst_base = 0, worst_violation = 0;
+    for (int s = 0; s < 3; ++s) {
+      const State x = random_state(model, rng);
+      MatQ J;
+      VecQ Jdot_qd;
+      contact_jacobian_by_differences(oracle, contacts, x.Q, x.Qd, J, Jdot_qd);
+      const VecQ id = ref::inverse_dynamics(oracle, x.Q, x.Qd, x.Qdd);
+      const VecQ lambda = pseudo_inverse_solve(J.leftCols(6).transpose(), id.head(6));
+      const VecQ tau = id - J.transpose() * lambda;
+      sd::inverse_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.qdd);
+      worst_tau = std::max(worst_tau, sd::relative_error_to(cd.tau.tail(model.nv - 6), VecQ(tau.tail(model.nv - 6))));
+      worst_lambda = std::max(worst_lambda, sd::relative_error_to(cd.lambda, lambda));
+      // The base rows: the wrench left over, relative to the base's part of ID.
+      const VecQ base_difference = sd::to_quad(VectorXd(cd.tau.head(6))) - tau.head(6);
+      worst_base = std::max(worst_base, static_cast<double>(base_difference.norm() / id.head(6).norm()));
+      const VecQ violation = J * x.Qdd + Jdot_qd;
+      worst_violation = std::max(worst_violation, sd::relative_error_to(cd.acceleration, violation));
+    }
+    std::printf("[%s] τ: %.3g, λ: %.3g, base rows: %.3g, J_c q̈ + J̇_c q̇: %.3g\n", scene.name.c_str(), worst_tau,
+                worst_lambda, worst_base, worst_violation);
+    EXPECT_LT(worst_tau, 1e-12) << scene.name;
+    EXPECT_LT(worst_lambda, 1e-12) << scene.name;
+    EXPECT_LT(worst_base, 1e-12) << scene.name;
+    EXPECT_LT(worst_violation, 1e-10) << scene.name;
+  }
+}
+
+TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) {
+  unsigned seed = 21;
+  for (const Scene& scene : scenes()) {
+    const sd::Model<double> model = floating_robot(scene.urdf);
+    const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
+    const sd::ContactSet<double> contacts(model, scene.frames, scene.kinds);
+    sd::Data<double> data(model);
+    sd::ContactData<double> cd(model, contacts);
+    std::mt19937 rng(seed++);
+    double worst_qdd = 0, worst_lambda = 0, worst_violation = 0;
+    for (int s = 0; s < 3; ++s) {
+      State x = random_state(model, rng);
+      // Contacts at rest (J_c q̇ = 0): redundant contacts' constraints are then consistent.
+      const MatrixXd J_c = sd::contact_jacobian(model, data, contacts, cd, x.q, x.qd);
+      x.qd -= J_c.completeOrthogonalDecomposition().solve(VectorXd(J_c * x.qd));
+      x.Qd = sd::to_quad(x.qd);
+      MatQ J;
+      VecQ Jdot_qd;
+      contact_jacobian_by_differences(oracle, contacts, x.Q, x.Qd, J, Jdot_qd);
+      const int n = model.nv, m = contacts.rows;
+      MatQ kkt = MatQ::Zero(n + m, n + m);
+      kkt.topLeftCorner(n, n) = ref::mass_matrix(oracle, x.Q);
+      kkt.topRightCorner(n, m) = -J.transpose();
+      kkt.bottomLeftCorner(m, n) = J;
+      VecQ rhs(n + m);
+      rhs << x.Tau - ref::nonlinear_effects(oracle, x.Q, x.Qd), -Jdot_qd;
+      const VecQ solution = pseudo_inverse_solve(kkt, rhs);  // (q̈ ; λ), λ of minimum norm
+      sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau);
+      worst_qdd = std::max(worst_qdd, sd::relative_error_to(cd.qdd, VecQ(solution.head(n))));
+      worst_lambda = std::max(worst_lambda, sd::relative_error_to(cd.lambda, VecQ(solution.tail(m))));
+      worst_violation = std::max(worst_violation, cd.acceleration.norm() / std::max(1.0, static_cast<double>(Jdot_qd.norm())));
+    }
+    std::printf("[%s] q̈: %.3g, λ: %.3g, ‖J_c q̈ + J̇_c q̇‖: %.3g\n", scene.name.c_str(), worst_qdd, worst_lambda, worst_violation);
+    EXPECT_LT(worst_qdd, 1e-12) << scene.name;
+    EXPECT_LT(worst_lambda, 1e-12) << scene.name;
+    EXPECT_LT(worst_violation, 1e-10) << scene.name;
+  }
+}
+
+TEST(Centroidal, CenterOfMassJacobianAndMomentumMatrixMatchDifferences) {
+  unsigned seed = 31;
+  for (const char* file : {"talos.urdf", "solo12.urdf", "double_pendulum.urdf"}) {
+    const sd::Model<double> model = floating_robot(file);
+    const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
+    sd::Data<double> data(model);
+    std::mt19937 rng(seed++);
+    Quad mass(0);
+    for (int i = 1; i < oracle.nbodies(); ++i) mass += oracle.inertia[i].mass;
+    auto com = [&](const std::vector<Mat6Q>& X0) {  // Σ m_i (p_i + R_i c_i) / m
+      Vec3Q sum = Vec3Q::Zero();
+      for (int i = 1; i < oracle.nbodies(); ++i) {
+        Mat3Q R;
+        Vec3Q p;
+        pose_of(X0[i], R, p);
+        sum += oracle.inertia[i].mass * p + R * oracle.inertia[i].first_moment.eigen();
+      }
+      return Vec3Q(sum / mass);
+    };
+    double worst_c = 0, worst_J = 0, worst_A = 0, worst_cdot = 0;
+    const Quad h(kStep);
+    for (int s = 0; s < 3; ++s) {
+      const State x = random_state(model, rng);
+      const std::vector<Mat6Q> X0 = body_transforms(oracle, x.Q);
+      const Vec3Q c = com(X0);
+      MatQ J_com(3, model.nv);
+      ref::Mat6X<Quad> A_G(6, model.nv);
+      for (int k = 0; k < model.nv; ++k) {
+        const VecQ e = VecQ::Unit(model.nv, k);
+        const std::vector<Mat6Q> Xm = body_transforms(oracle, sd_test::advance(oracle, x.Q, e, -h));
+        const std::vector<Mat6Q> Xp = body_transforms(oracle, sd_test::advance(oracle, x.Q, e, h));
+        J_com.col(k) = (com(Xp) - com(Xm)) / (2 * h);
+        ref::Vec6<Quad> h_0 = ref::Vec6<Quad>::Zero();  // Σ ^0X_i* I_i v_i, about the base origin
+        for (int i = 1; i < oracle.nbodies(); ++i)
+          h_0 += X0[i].transpose() * (ref::body_inertia(oracle, i) * velocity_from(Xm[i], X0[i], Xp[i], h));
+        A_G.col(k) << h_0.head<3>() - c.cross(Vec3Q(h_0.tail<3>())), h_0.tail<3>();
+      }
+      worst_c = std::max(worst_c, sd::relative_error_to(sd::center_of_mass(model, data, x.q), c));
+      worst_J = std::max(worst_J, sd::relative_error_to(sd::center_of_mass_jacobian(model, data, x.q), J_com));
+      worst_A = std::max(worst_A, sd::relative_error_to(sd::centroidal_momentum_matrix(model, data, x.q), A_G));
+      worst_cdot = std::max(worst_cdot, sd::relative_error_to(sd::center_of_mass_velocity(model, data, x.q, x.qd),
+                                                              VecQ(J_com * x.Qd)));
+      const sd::ForceVector<double> h_G = sd::centroidal_momentum(model, data, x.q, x.qd);
+      EXPECT_LT(sd::relative_error_to(h_G.toVector(), VecQ(A_G * x.Qd)), 1e-10) << file;
+    }
+    std::printf("[%s floating] c: %.3g, J_com: %.3g, A_G: %.3g, ċ: %.3g\n", file, worst_c, worst_J, worst_A, worst_cdot);
+    EXPECT_LT(worst_c, 1e-12) << file;
+    EXPECT_LT(worst_J, 1e-10) << file;
+    EXPECT_LT(worst_A, 1e-10) << file;
+    EXPECT_LT(worst_cdot, 1e-10) << file;
+  }
+}
+
+TEST(Contacts, BadInputIsNamed) {
+  const sd::Model<double> model = floating_robot("solo12.urdf");
+  auto message = [&](const std::vector<std::string>& frames, const std::vector<std::string>& kinds,
+                     const std::vector<double>& frictions) {
+    try {
+      sd::ContactSet<double> contacts(model, frames, kinds, frictions);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message({"FL_TOE"}, {"point"}, {}).find("unknown frame 'FL_TOE'"), std::string::npos);
+  EXPECT_NE(message({"FL_FOOT"}, {"edge"}, {}).find("unknown kind 'edge'"), std::string::npos);
+  EXPECT_NE(message({"FL_FOOT", "HR_FOOT"}, {"point"}, {}).find("2 frames but 1 kinds"), std::string::npos);
+  EXPECT_NE(message({"FL_FOOT"}, {"point"}, {-0.5}).find("'FL_FOOT': the friction coefficient"), std::string::npos);
+  EXPECT_NE(message({"FL_FOOT", "FL_FOOT"}, {"point", "point"}, {}).find("named twice"), std::string::npos);
+  EXPECT_EQ(message({"FL_FOOT", "HR_FOOT"}, {"point", "surface"}, {0.7, 0.0}), "accepted");
+}
