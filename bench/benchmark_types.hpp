@@ -16,15 +16,17 @@ namespace bench {
 // Coriolis: coriolis_matrix; ObserverUpdate: one MomentumObserver::update (with the actuator terms),
 // its result p = M q̇ and u = τ_m − τ_a + Cᵀ q̇ − g (ours only).
 // Regressor: joint_torque_regressor, its result Y π against the reference's τ (ours only).
+// ContactId, ContactFd: inverse_dynamics_with_contacts ((τ ; λ)) and forward_dynamics_with_contacts
+// ((q̈ ; λ)) on the models with benchmark_contacts (ours only).
 enum class Algorithm { Rnea, RneaBatch, Aba, AbaRefined, Crba, CrbaCholesky, Gravity, Fk, RneaActuated, AbaActuated,
-                       Coriolis, ObserverUpdate, Regressor };
+                       Coriolis, ObserverUpdate, Regressor, ContactId, ContactFd };
 
 inline const std::vector<Algorithm>& all_algorithms() {
   static const std::vector<Algorithm> all = {Algorithm::Rnea,         Algorithm::RneaBatch, Algorithm::Aba, Algorithm::AbaRefined,
                                              Algorithm::Crba,         Algorithm::CrbaCholesky,
                                              Algorithm::Gravity,      Algorithm::Fk,        Algorithm::RneaActuated,
                                              Algorithm::AbaActuated,  Algorithm::Coriolis,  Algorithm::ObserverUpdate,
-                                             Algorithm::Regressor};
+                                             Algorithm::Regressor,    Algorithm::ContactId, Algorithm::ContactFd};
   return all;
 }
 
@@ -44,6 +46,8 @@ inline const char* name(Algorithm a) {
     case Algorithm::Coriolis: return "coriolis_matrix";
     case Algorithm::ObserverUpdate: return "observer_update";
     case Algorithm::Regressor: return "joint_torque_regressor";
+    case Algorithm::ContactId: return "inverse_dynamics_with_contacts";
+    case Algorithm::ContactFd: return "forward_dynamics_with_contacts";
   }
   return "?";
 }

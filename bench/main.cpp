@@ -693,6 +693,35 @@ std::string regressor_targets(const std::vector<Row>& rows, const std::vector<Mo
   return s.str();
 }
 
+/// The contact rows against our own rows of the same run (issue targets): inverse_dynamics_with_contacts
+/// within one RNEA plus one CRBA, forward_dynamics_with_contacts within 2.5 × the ABA; errors of
+/// (τ ; λ) and (q̈ ; λ) against the dense float128 solutions.
+std::string contact_targets(const std::vector<Row>& rows, const std::vector<ModelSpec>& specs) {
+  std::ostringstream s;
+  char line[512];
+  s << "| model | base | build | contact ID (ns) | rnea + crba (ns) | ratio | met | (τ ; λ) error (max) | contact FD (ns) "
+       "| aba (ns) | ratio to aba | target | met | (q̈ ; λ) error (max) |\n"
+       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ModelSpec& m : specs) {
+    if (!m.kept_joints.empty()) continue;
+    for (const char* library : {"spatial_dynamics", "spatial_dynamics_default_build"}) {
+      const Row* id = find(rows, library, "inverse_dynamics_with_contacts", m.name, m.base);
+      const Row* fd = find(rows, library, "forward_dynamics_with_contacts", m.name, m.base);
+      const Row* rnea = find(rows, library, "rnea", m.name, m.base);
+      const Row* crba = find(rows, library, "crba", m.name, m.base);
+      const Row* aba = find(rows, library, "aba", m.name, m.base);
+      if (!id || !fd || !rnea || !crba || !aba) continue;
+      const double id_ratio = id->ns_median / (rnea->ns_median + crba->ns_median), fd_ratio = fd->ns_median / aba->ns_median;
+      std::snprintf(line, sizeof line, "| %s | %s | %s | %.0f | %.0f | %.2f | %s | %.2g | %.0f | %.0f | %.2f | 2.50 | %s | %.2g |\n",
+                    m.name.c_str(), m.base.c_str(), std::string(library) == "spatial_dynamics" ? "native" : "default",
+                    id->ns_median, rnea->ns_median + crba->ns_median, id_ratio, id_ratio <= 1.0 ? "yes" : "**no**",
+                    id->max_err, fd->ns_median, aba->ns_median, fd_ratio, fd_ratio <= 2.5 ? "yes" : "**no**", fd->max_err);
+      s << line;
+    }
+  }
+  return s.str();
+}
+
 /// One identify_payload of 4,000 samples on the panda (20 s of the excitation trajectory at 200 Hz,
 /// exact efforts of a 2.1 kg tool on panda_link8): wall time, median (min–max) of 7 runs, target
 /// 0.5 s, and the relative error of the identified parameters.
@@ -833,6 +862,12 @@ void write_markdown(const std::string& path, const std::vector<Row>& rows, const
        "float128 RNEA) against our `rnea` of the same run, target 4 × its time; and one `identify_payload` of 4,000 "
        "samples on the panda (doc/payload_identification.md), target 0.5 s.\n\n"
     << regressor_targets(rows, specs) << "\n" << identification << "\n";
+  s << "## Contacts\n\n`inverse_dynamics_with_contacts` and `forward_dynamics_with_contacts` (doc/library.md, *Contacts "
+       "and the centre of mass*) on the floating talos standing on its two soles (`surface`) and the floating solo12 on "
+       "its four feet (`point`), against our own rows of the same run: contact-consistent ID within one RNEA plus one "
+       "CRBA, constrained FD within 2.5 × the ABA; errors against dense float128 solutions (the base rows' and the KKT "
+       "system's pseudo-inverses).\n\n"
+    << contact_targets(rows, specs) << "\n";
   if (settings.default_build)
     s << "## The default build against -march=native\n\nThe package's default build (`spatial_dynamics_default_build`: "
          "libspatial_dynamics, its " << sd::simd_backend() << " instances chosen at run time) over our -march=native rows, "
@@ -919,6 +954,7 @@ int main(int argc, char** argv) {
   std::printf("\nCoriolis matrix and momentum observer\n\n%s\n", observer_targets(rows, specs).c_str());
   std::printf("\nJoint-torque regressor and payload identification\n\n%s\n%s\n", regressor_targets(rows, specs).c_str(),
               identification.c_str());
+  std::printf("\nContacts\n\n%s\n", contact_targets(rows, specs).c_str());
   if (settings.default_build) std::printf("\nDefault build against -march=native\n\n%s\n", default_build_ratios(rows).c_str());
   std::printf("\nActuator rows against the rigid-body rows\n\n%s\n",
               actuated_rows(rows).c_str());

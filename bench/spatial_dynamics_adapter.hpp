@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "benchmark_actuators.hpp"
+#include "benchmark_contacts.hpp"
 #include "benchmark_types.hpp"
 #include "spatial_dynamics/algorithms.hpp"
 #include "spatial_dynamics/algorithms/aba_refined.hpp"
@@ -21,11 +22,14 @@ class SpatialDynamicsAdapter : public Adapter {
       : model_(model.cast<S>()), actuated_model_(with_benchmark_actuators(model).cast<S>()), data_(model_), refinement_(model_), refinement_fine_(model_), llt_(model_.nv), rhs_(model_.nv), batch_(model_),
         batch_tau_(model_.nv, kBatchStates),
         observer_(actuated_model_, spatial_dynamics::VectorX<S>::Constant(model_.nv, S(50))),
-        observer_result_(2 * model_.nv), parameters_(model_.inertial_parameters()) {}
+        observer_result_(2 * model_.nv), parameters_(model_.inertial_parameters()), contacts_(benchmark_contacts(model_)),
+        contact_data_(model_, contacts_), contact_result_(model_.nv + contacts_.rows) {}
 
   std::string library() const override { return "spatial_dynamics"; }
   std::string scalar() const override { return std::is_same<S, float>::value ? "float" : "double"; }
-  bool supports(Algorithm) const override { return true; }
+  bool supports(Algorithm a) const override {
+    return (a != Algorithm::ContactId && a != Algorithm::ContactFd) || !contacts_.empty();
+  }
   std::string method(Algorithm a) const override {
     switch (a) {
       case Algorithm::Rnea: return "rnea";
@@ -48,6 +52,8 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::Coriolis: return "coriolis_matrix";
       case Algorithm::ObserverUpdate: return "MomentumObserver::update (armature, damping, friction; K = 50/s, 1 kHz)";
       case Algorithm::Regressor: return "joint_torque_regressor (error of Y π)";
+      case Algorithm::ContactId: return "inverse_dynamics_with_contacts (error of (τ ; λ))";
+      case Algorithm::ContactFd: return "forward_dynamics_with_contacts (error of (q̈ ; λ))";
     }
     return "";
   }
@@ -99,6 +105,12 @@ class SpatialDynamicsAdapter : public Adapter {
       case Algorithm::Coriolis: sd::coriolis_matrix(model_, data_, q_[k], qd_[k]); return;
       case Algorithm::ObserverUpdate: observer_.update(q_[k], qd_[k], tau_[k], S(1e-3)); return;
       case Algorithm::Regressor: sd::joint_torque_regressor(model_, data_, q_[k], qd_[k], qdd_[k]); return;
+      case Algorithm::ContactId:
+        sd::inverse_dynamics_with_contacts(model_, data_, contacts_, contact_data_, q_[k], qd_[k], qdd_[k]);
+        return;
+      case Algorithm::ContactFd:
+        sd::forward_dynamics_with_contacts(model_, data_, contacts_, contact_data_, q_[k], qd_[k], tau_[k]);
+        return;
     }
   }
 
@@ -118,6 +130,12 @@ class SpatialDynamicsAdapter : public Adapter {
         observer_result_ << observer_.momentum(), observer_.explained_momentum_rate();
         return observer_result_.template cast<double>();
       case Algorithm::Regressor: return (data_.Y * parameters_).template cast<double>();
+      case Algorithm::ContactId:
+        contact_result_ << contact_data_.tau, contact_data_.lambda;
+        return contact_result_.template cast<double>();
+      case Algorithm::ContactFd:
+        contact_result_ << contact_data_.qdd, contact_data_.lambda;
+        return contact_result_.template cast<double>();
       case Algorithm::Fk: {
         Eigen::VectorXd poses(12 * (model_.nbodies() - 1));
         for (int i = 1; i < model_.nbodies(); ++i) {
@@ -147,6 +165,9 @@ class SpatialDynamicsAdapter : public Adapter {
   spatial_dynamics::MomentumObserver<S> observer_;  // on actuated_model_
   spatial_dynamics::VectorX<S> observer_result_;
   spatial_dynamics::VectorX<S> parameters_;  // π, for the regressor's Y π
+  spatial_dynamics::ContactSet<S> contacts_;  // benchmark_contacts: empty for most models
+  spatial_dynamics::ContactData<S> contact_data_;
+  spatial_dynamics::VectorX<S> contact_result_;  // (τ ; λ) or (q̈ ; λ)
 };
 
 }  // namespace bench

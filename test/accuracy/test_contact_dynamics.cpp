@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <Eigen/LU>
 #include <Eigen/QR>
 #include <cstdio>
 #include <random>
@@ -26,6 +25,7 @@
 #include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "spatial_dynamics/reference/joint_model.hpp"
 #include "spatial_dynamics/reference/mass_matrix.hpp"
+#include "spatial_dynamics/reference/pseudo_inverse.hpp"
 #include "configuration_path.hpp"
 #include "exact_rotations.hpp"
 #include "test_utils.hpp"
@@ -131,19 +131,8 @@ void contact_jacobian_by_differences(const sd::Model<Quad>& model, const sd::Con
   }
 }
 
-/// The minimum-norm least-squares solution of A x = b, pinv(A) b, by a full-rank factorization A = B Z:
-/// B the columns of A that span its range (rank decided at 1e-12 relative, above the differences'
-/// rounding), Z = (BᵀB)⁻¹BᵀA of full row rank, pinv(A) = Zᵀ(ZZᵀ)⁻¹(BᵀB)⁻¹Bᵀ. (Eigen's SVDs, orthogonal
-/// decompositions and LDLT solves do not compile for Boost's float128 here; LU and LLT do.)
-VecQ pseudo_inverse_solve(const MatQ& A, const VecQ& b) {
-  Eigen::FullPivLU<MatQ> lu(A);
-  lu.setThreshold(Quad(1e-12));
-  const MatQ B = lu.image(A);
-  const Eigen::LLT<MatQ> BtB(B.transpose() * B);
-  const MatQ Z = BtB.solve(B.transpose() * A);
-  const VecQ y = BtB.solve(B.transpose() * b);
-  return Z.transpose() * MatQ(Z * Z.transpose()).llt().solve(y);
-}
+/// pinv(A) b, the rank decided at 1e-12 relative (above the differences' rounding).
+VecQ pseudo_inverse_solve(const MatQ& A, const VecQ& b) { return ref::pseudo_inverse_solve(A, b, Quad(1e-12)); }
 
 struct State {
   VectorXd q, qd, qdd, tau;

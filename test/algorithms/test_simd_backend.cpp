@@ -72,6 +72,8 @@ TEST_P(BackendsAgree, OnRandomStates) {
   sd::RefinementWorkspace<double> ws_here(model), ws_portable(model), ws_avx2(model);
   sd::BatchData<double> batch_here(model), batch_portable(model), batch_avx2(model);
   const int frame = static_cast<int>(model.frames.size()) - 1;
+  const sd::ContactSet<double> contacts(model, {model.frames[frame].name}, {"point"});  // the last link's origin held
+  sd::ContactData<double> contacts_here(model, contacts), contacts_portable(model, contacts), contacts_avx2(model, contacts);
   std::mt19937 rng(7);
   double worst = 0;  // largest relative difference between the two builds
   const auto compare = [&](const auto& from_here, const auto& from_portable, const auto& from_avx2, const char* what) {
@@ -118,6 +120,32 @@ TEST_P(BackendsAgree, OnRandomStates) {
             MatrixXd(portable.frame_jacobian(model, data_portable, q, frame, sd::ReferenceFrame::RootAligned)),
             MatrixXd(avx2.frame_jacobian(model, data_avx2, q, frame, sd::ReferenceFrame::RootAligned)),
             "frame_jacobian");
+    compare(VectorXd(sd::inverse_dynamics_with_contacts<double>(model, here, contacts, contacts_here, q, qd, qdd)),
+            VectorXd(portable.inverse_dynamics_with_contacts(model, data_portable, contacts, contacts_portable, q, qd, qdd)),
+            VectorXd(avx2.inverse_dynamics_with_contacts(model, data_avx2, contacts, contacts_avx2, q, qd, qdd)),
+            "inverse_dynamics_with_contacts");
+    compare(VectorXd(contacts_here.lambda), VectorXd(contacts_portable.lambda), VectorXd(contacts_avx2.lambda),
+            "inverse_dynamics_with_contacts: λ");
+    // (q̈ ; λ) together: the contact can hold every joint (the double pendulum's), and q̈ is then zero but for rounding.
+    const auto constrained = [&](const sd::ContactData<double>& cd) {
+      VectorXd x(cd.qdd.size() + cd.lambda.size());
+      x << cd.qdd, cd.lambda;
+      return x;
+    };
+    sd::forward_dynamics_with_contacts<double>(model, here, contacts, contacts_here, q, qd, tau);
+    portable.forward_dynamics_with_contacts(model, data_portable, contacts, contacts_portable, q, qd, tau);
+    avx2.forward_dynamics_with_contacts(model, data_avx2, contacts, contacts_avx2, q, qd, tau);
+    compare(constrained(contacts_here), constrained(contacts_portable), constrained(contacts_avx2),
+            "forward_dynamics_with_contacts");
+    compare(MatrixXd(sd::contact_jacobian<double>(model, here, contacts, contacts_here, q, qd)),
+            MatrixXd(portable.contact_jacobian(model, data_portable, contacts, contacts_portable, q, qd)),
+            MatrixXd(avx2.contact_jacobian(model, data_avx2, contacts, contacts_avx2, q, qd)), "contact_jacobian");
+    compare(MatrixXd(sd::centroidal_momentum_matrix<double>(model, here, q)),
+            MatrixXd(portable.centroidal_momentum_matrix(model, data_portable, q)),
+            MatrixXd(avx2.centroidal_momentum_matrix(model, data_avx2, q)), "centroidal_momentum_matrix");
+    compare(Eigen::Vector3d(sd::center_of_mass<double>(model, here, q)),
+            Eigen::Vector3d(portable.center_of_mass(model, data_portable, q)),
+            Eigen::Vector3d(avx2.center_of_mass(model, data_avx2, q)), "center_of_mass");
     // The library's own entry points run one of the two builds.
     const VectorXd chosen = sd::rnea(model, data_portable, q, qd, qdd);
     EXPECT_TRUE(chosen == VectorXd(std::string(sd::simd_backend()) == "portable"

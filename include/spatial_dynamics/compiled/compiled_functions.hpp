@@ -16,6 +16,10 @@ namespace spatial_dynamics {
 
 template <class S, class W>
 struct RefinementWorkspace;  // aba_refined.hpp
+template <class S>
+struct ContactSet;  // model/contact_set.hpp
+template <class S>
+struct ContactData;  // model/contact_data.hpp
 enum class ReferenceFrame;   // jacobian.hpp
 
 #ifdef SD_COMPILED_DOUBLE

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/QR>
+#include <algorithm>
 
 #include "spatial_dynamics/model/contact_set.hpp"
 #include "spatial_dynamics/model/model.hpp"
@@ -35,7 +36,14 @@ struct ContactData {
         K(MatrixX<S>::Zero(contacts.rows, contacts.rows)),
         base_rows(MatrixX<S>::Zero(6, contacts.rows)),
         K_solver(contacts.rows, contacts.rows),
-        base_solver(6, contacts.rows) {}
+        base_solver(6, contacts.rows) {
+    // Rank: a pivot below 100 ε · size of the largest is rounding, not a direction the contacts hold
+    // (redundant contacts leave pivots of a few ε; Eigen's default, ε · size, splits them by chance).
+    using std::max;
+    const S tolerance = S(100) * Eigen::NumTraits<S>::epsilon() * S(max(contacts.rows, 6));
+    K_solver.setThreshold(tolerance);
+    base_solver.setThreshold(tolerance);
+  }
 };
 
 }  // namespace spatial_dynamics
