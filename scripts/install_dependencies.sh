@@ -11,7 +11,7 @@ packages=(
   googletest libgtest-dev
   liborocos-kdl-dev libkdl-parser-dev libmujoco-dev
   ros-message-generation python3-genpy
-  libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
+  libstd-msgs-dev libgeometry-msgs-dev libsensor-msgs-dev libnav-msgs-dev libtrajectory-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libdiagnostic-updater-dev libtf2-dev libtf2-ros-dev libnodeletlib-dev libnodeletlib-tools
   python3-rospy python3-roslaunch python3-rosservice python3-rostopic python3-rosnode python3-rospkg
   rosbash rospack-tools

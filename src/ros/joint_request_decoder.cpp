@@ -12,6 +12,7 @@ JointRequestDecoder::JointRequestDecoder(const Model<double>& model, const std::
   for (int i = 1; i < model.nbodies(); ++i) {
     const Joint<double>& j = model.joints[i];
     if (j.coupled) continue;  // follows its master: no coordinate of its own
+    if (model.floating_base && i == 1) continue;  // the base's coordinates come with the base's state
     if (j.nq != j.nv)
       throw std::invalid_argument("joint '" + model.joint_names[i] + "': a free joint has " + std::to_string(j.nq) +
                                   " position and " + std::to_string(j.nv) +
@@ -92,7 +93,8 @@ std::string JointRequestDecoder::decode(const std::string& field, const std::vec
   return {};
 }
 
-std::string JointRequestDecoder::limitWarnings(const Eigen::VectorXd& q) const {
+std::string JointRequestDecoder::limitWarnings(const Eigen::VectorXd& full_q) const {
+  const auto q = full_q.tail(names_.size());  // after a floating base's coordinates
   std::string warnings;  // stays empty (no formatting, no allocation) when every joint is in range
   for (int i = 0; i < static_cast<int>(names_.size()); ++i) {
     const bool has_range = upper_[i] > lower_[i];  // URDF's lower = upper = 0 means "not given"

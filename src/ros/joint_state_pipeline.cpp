@@ -7,10 +7,19 @@
 namespace spatial_dynamics {
 
 JointStatePipeline::JointStatePipeline(ros::NodeHandle nh, ros::NodeHandle private_nh, ModelStore& store,
-                                       ExternalTorqueMonitor& external_torques, JointStateRecorder& recorder)
-    : store_(store), external_torques_(external_torques), recorder_(recorder), reported_time_(ros::WallTime::now()) {
-  for (const SceneConfig& scene : store_.config().scenes)
+                                       const BaseStateSource& base, ExternalTorqueMonitor& external_torques,
+                                       JointStateRecorder& recorder)
+    : store_(store),
+      base_(base),
+      external_torques_(external_torques),
+      recorder_(recorder),
+      reported_time_(ros::WallTime::now()) {
+  for (const SceneConfig& scene : store_.config().scenes) {
     computed_torques_.push_back(private_nh.advertise<sensor_msgs::JointState>(scene.resolve("computed_torques"), 1000));
+    computed_contact_wrenches_.push_back(
+        private_nh.advertise<ContactWrenches>(scene.resolve("computed_contact_wrenches"), 1000));
+  }
+  centroidal_state_ = private_nh.advertise<CentroidalState>("centroidal_state", 1000);
   if (store_.config().inline_joint_states)
     nh.setCallbackQueue(&queue_);
   else
@@ -66,20 +75,37 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
     if (!store_.config().publish_computed_torques || !served->model) continue;
     try {
       sensor_msgs::JointState out;
+      ContactWrenches wrenches;
       const WorkspacePool::Lease ws = served->workspaces.acquire(*served->model);
-      if (!compute_latest_torques(*served, *ws, out.position, out.velocity, out.effort)) continue;
+      if (!compute_latest_torques(*served, base_, *ws, msg->header.stamp, out, wrenches.wrenches)) continue;
       out.header = msg->header;
-      out.name = served->decoder->jointNames();
       computed_torques_[k].publish(out);
+      if (!wrenches.wrenches.empty()) {
+        wrenches.header = msg->header;
+        computed_contact_wrenches_[k].publish(wrenches);
+      }
       ++torque_messages_;
       published = true;
     } catch (const std::exception& e) {
       ROS_WARN_THROTTLE(5.0, "dynamics: no computed torques for this joint state: %s", e.what());
     }
   }
+  publishCentroidalState(msg->header.stamp, robot);
   if (published) torque_latency_us_.record((ros::Time::now() - event.getReceiptTime()).toSec() * 1e6);
   external_torques_.onJointStates(*msg, robot);
   recorder_.add(*msg);
+}
+
+void JointStatePipeline::publishCentroidalState(const ros::Time& stamp, const std::shared_ptr<const ServedRobot>& robot) {
+  const std::shared_ptr<const ServedScene> served = store_.scene(0);
+  if (!served || !served->model || served->robot != robot) return;
+  try {
+    CentroidalState out;
+    const WorkspacePool::Lease ws = served->workspaces.acquire(*served->model);
+    if (compute_centroidal_state(*served, base_, *ws, stamp, out)) centroidal_state_.publish(out);
+  } catch (const std::exception& e) {
+    ROS_WARN_THROTTLE(5.0, "dynamics: no centroidal state for this joint state: %s", e.what());
+  }
 }
 
 void JointStatePipeline::report(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -16,17 +16,23 @@ std::shared_ptr<const ServedRobot> ModelStore::loadRobot(const RobotSource& sour
                                                          const std::map<std::string, Payload>& payloads) const {
   ModelBuildOptions options;
   options.gravity = source.gravity;
+  options.floating_base = source.floating_base;
   auto robot = std::make_shared<ServedRobot>();
   Model<double> bare = build_model_from_urdf_string(source.urdf, options);
+  ContactSet<double>(bare, contacts_.frames, contacts_.kinds, contacts_.frictions);  // throws naming a bad contact
   apply_actuator_settings(source.actuators, config_.coupled_mimic_joints, bare);
   robot->actuator_model = source.actuators.model;
   robot->bare = std::make_shared<const Model<double>>(std::move(bare));
   robot->full = std::make_shared<const Model<double>>(with_payloads(*robot->bare, payloads));
-  // One joint state per coordinate: a joint's name, or <joint>/x, /y, /yaw of a planar joint.
-  robot->cache = std::make_shared<JointStateCache>(robot->bare->velocityNames(), config_.max_state_age,
-                                                   config_.unknown_joints);
+  // One joint state per coordinate: a joint's name, or <joint>/x, /y, /yaw of a planar joint; a
+  // floating base's six come from its base state instead.
+  std::vector<std::string> joint_names = robot->bare->velocityNames();
+  if (source.floating_base) joint_names.erase(joint_names.begin(), joint_names.begin() + 6);
+  robot->cache = std::make_shared<JointStateCache>(joint_names, config_.max_state_age, config_.unknown_joints);
   robot->robot_name = robot->bare->name;
-  robot->root_frame = robot->bare->body_names[0];
+  robot->floating_base = source.floating_base;
+  robot->root_frame = robot->bare->body_names[source.floating_base ? 1 : 0];
+  robot->contacts = contacts_;
   if (const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(source.urdf))
     for (const auto& link : urdf->links_)
       if (link.second->child_links.empty()) robot->leaf_links.push_back(link.first);
@@ -38,6 +44,29 @@ std::shared_ptr<const ServedRobot> ModelStore::withPayloads(const ServedRobot& r
   auto loaded = std::make_shared<ServedRobot>(robot);
   loaded->full = std::make_shared<const Model<double>>(with_payloads(*robot.bare, payloads));
   return loaded;
+}
+
+bool ModelStore::setContacts(const ContactSpec& contacts, std::string& message) {
+  std::lock_guard<std::mutex> serialise(payload_mutex_);
+  const std::shared_ptr<const ServedRobot> served = robot();
+  if (!served) {
+    message = "no robot model is loaded: " + loadError();
+    return false;
+  }
+  try {
+    const ContactSet<double> set(*served->full, contacts.frames, contacts.kinds, contacts.frictions);
+    auto changed = std::make_shared<ServedRobot>(*served);
+    changed->contacts = contacts;
+    install(changed);
+    message = std::to_string(set.size()) + " contact(s) set";
+    for (std::size_t k = 0; k < set.size(); ++k)
+      message += (k ? ", '" : ": '") + contacts.frames[k] + "' (" + contact_kind_name(set.contacts[k].kind) + ")";
+  } catch (const std::exception& e) {
+    message = std::string("contacts not set: ") + e.what() + " (the previous contacts stay)";
+    return false;
+  }
+  contacts_ = contacts;
+  return true;
 }
 
 std::shared_ptr<const ServedScene> ModelStore::buildScene(const std::shared_ptr<const ServedRobot>& robot,
@@ -88,6 +117,12 @@ std::shared_ptr<const ServedScene> ModelStore::buildScene(const std::shared_ptr<
       scene->rigid_model = std::make_shared<const Model<double>>(std::move(rigid));
     }
     scene->decoder = std::make_unique<JointRequestDecoder>(*scene->model, robot->cache->jointNames());
+    try {
+      const ContactSpec& c = robot->contacts;
+      scene->contacts = ContactSet<double>(*scene->model, c.frames, c.kinds, c.frictions);
+    } catch (const std::exception& e) {
+      scene->contacts_error = who + ": the node's contacts do not resolve on its model: " + e.what();
+    }
   } catch (const std::exception& e) {
     scene->model.reset();
     scene->rigid_model.reset();

@@ -112,6 +112,7 @@ std::string check(const ros::NodeHandle& private_nh, const NodeConfig& config, c
     return name("unknown_joints") + " must be 'drop' or 'ignore', not '" + unknown_joints + "'";
   if (!(config.max_state_age > 0.0)) return name("max_state_age") + " must be > 0 (seconds)";
   if (!(config.relock_tolerance >= 0.0)) return name("relock_tolerance") + " must be >= 0";
+  if (config.world_frame.empty()) return name("world_frame") + " must name a tf frame";
   return "";
 }
 
@@ -121,6 +122,40 @@ bool as_number(const XmlRpc::XmlRpcValue& value, double& out) {
   else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) out = static_cast<int>(const_cast<XmlRpc::XmlRpcValue&>(value));
   else return false;
   return true;
+}
+
+/// ~contacts: a list of {frame: name, kind: point | surface, friction: μ (optional)}; throws naming
+/// the entry that is malformed (the frames are checked against each model as it loads).
+ContactSpec read_contacts(const ros::NodeHandle& private_nh) {
+  ContactSpec spec;
+  XmlRpc::XmlRpcValue value;
+  if (!private_nh.getParam("contacts", value)) return spec;
+  const std::string name = "parameter " + private_nh.resolveName("contacts");
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeArray)
+    throw std::runtime_error(name + " must be a list of {frame: ..., kind: point|surface, friction: ...}");
+  bool any_friction = false;
+  for (int k = 0; k < value.size(); ++k) {
+    XmlRpc::XmlRpcValue& entry = value[k];
+    const std::string culprit = name + "[" + std::to_string(k) + "]";
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct || !entry.hasMember("frame") || !entry.hasMember("kind") ||
+        entry["frame"].getType() != XmlRpc::XmlRpcValue::TypeString ||
+        entry["kind"].getType() != XmlRpc::XmlRpcValue::TypeString)
+      throw std::runtime_error(culprit + " must be {frame: <link>, kind: point|surface, friction: <mu, optional>}");
+    for (auto it = entry.begin(); it != entry.end(); ++it)
+      if (it->first != "frame" && it->first != "kind" && it->first != "friction")
+        throw std::runtime_error(culprit + " has an unknown key '" + it->first + "' (frame, kind, friction)");
+    spec.frames.push_back(static_cast<std::string>(entry["frame"]));
+    spec.kinds.push_back(static_cast<std::string>(entry["kind"]));
+    double mu = 0.0;
+    if (entry.hasMember("friction")) {
+      any_friction = true;
+      if (!as_number(entry["friction"], mu) || !std::isfinite(mu) || mu < 0.0)
+        throw std::runtime_error(culprit + ".friction must be a finite number >= 0");
+    }
+    spec.frictions.push_back(mu);
+  }
+  if (!any_friction) spec.frictions.clear();
+  return spec;
 }
 
 /// `key` under `nh` as one number or a map name → number; throws naming it otherwise.
@@ -179,8 +214,15 @@ NodeConfig read_node_config(const ros::NodeHandle& private_nh) {
   private_nh.param<std::string>("unknown_joints", unknown_joints, unknown_joints);
   config.coupled_mimic_joints = mimic_joints == "coupled";
   if (unknown_joints == "ignore") config.unknown_joints = JointStateCache::UnknownJoints::kIgnore;
+  private_nh.param<std::string>("base_odometry", config.base_odometry, config.base_odometry);
+  private_nh.param<std::string>("world_frame", config.world_frame, config.world_frame);
   config.scenes = read_scenes(private_nh);
   config.error = check(private_nh, config, mimic_joints, unknown_joints);
+  try {
+    config.contacts = read_contacts(private_nh);
+  } catch (const std::exception& e) {
+    if (config.error.empty()) config.error = e.what();
+  }
   return config;
 }
 
@@ -190,6 +232,12 @@ RobotSource read_robot_source(const ros::NodeHandle& nh, const ros::NodeHandle& 
     throw std::runtime_error("parameter " + nh.resolveName("robot_description") + " is not set");
   source.gravity = read_gravity(private_nh);
   source.actuators = read_actuator_settings(private_nh);
+  std::string root_joint = "fixed";
+  if (private_nh.hasParam("root_joint") && !private_nh.getParam("root_joint", root_joint)) root_joint = "(not a string)";
+  if (root_joint != "fixed" && root_joint != "floating")
+    throw std::runtime_error("parameter " + private_nh.resolveName("root_joint") + " must be 'fixed' or 'floating', not '" +
+                             root_joint + "'");
+  source.floating_base = root_joint == "floating";
   return source;
 }
 

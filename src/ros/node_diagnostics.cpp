@@ -15,12 +15,14 @@ std::string simd_backend_or_error() {
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
                                  const ServiceEndpoints& services, JointStatePipeline& joint_states,
                                  ExternalTorqueMonitor& external_torques,
-                                 const PayloadIdentificationEndpoint& payload_identification)
+                                 const PayloadIdentificationEndpoint& payload_identification,
+                                 const BaseStateTracker& base_state)
     : store_(store),
       services_(services),
       joint_states_(joint_states),
       external_torques_(external_torques),
       payload_identification_(payload_identification),
+      base_state_(base_state),
       updater_(nh, private_nh) {
   updater_.setHardwareID("none");
   updater_.add("Dynamics", this, &NodeDiagnostics::diagnose);
@@ -46,7 +48,10 @@ void NodeDiagnostics::diagnose(diagnostic_updater::DiagnosticStatusWrapper& stat
     return;
   }
   updater_.setHardwareID(robot->robot_name);
-  status.add("joints", robot->bare->nv);
+  status.add("joints", static_cast<int>(robot->cache->jointNames().size()));
+  status.add("base", robot->floating_base ? "floating" : "fixed");
+  if (robot->floating_base) base_state_.report(status);
+  status.add("contacts", static_cast<int>(robot->contacts.frames.size()));
   status.add("actuator model", to_string(robot->actuator_model));
   if (!scene_errors.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, scene_errors);

@@ -5,8 +5,8 @@
 namespace spatial_dynamics {
 
 ServiceEndpoints::ServiceEndpoints(ros::NodeHandle private_nh, ModelStore& store, const FrameLookup& frames,
-                                   ModelStore::SourceReader source)
-    : private_nh_(std::move(private_nh)), store_(store), frames_(frames), source_(std::move(source)) {
+                                   const BaseStateSource& base, ModelStore::SourceReader source)
+    : private_nh_(std::move(private_nh)), store_(store), frames_(frames), base_(base), source_(std::move(source)) {
   Counters& wrench = counters_.emplace_back("transform_wrench");
   services_.push_back(private_nh_.advertiseService<TransformWrench::Request, TransformWrench::Response>(
       "transform_wrench", [this, &wrench](auto& req, auto& res) {
@@ -16,11 +16,16 @@ ServiceEndpoints::ServiceEndpoints(ros::NodeHandle private_nh, ModelStore& store
       }));
   services_.push_back(private_nh_.advertiseService("reload", &ServiceEndpoints::onReload, this));
   services_.push_back(private_nh_.advertiseService("set_payload", &ServiceEndpoints::onSetPayload, this));
+  services_.push_back(private_nh_.advertiseService("set_contacts", &ServiceEndpoints::onSetContacts, this));
+  // The base state for the calls that need one.
+  const auto with_base = [this](auto compute) {
+    return [this, compute](const ServedScene& s, Workspace& ws, const auto& req, auto& res) { compute(s, base_, ws, req, res); };
+  };
   for (std::size_t k = 0; k < store_.sceneCount(); ++k) {
-    advertise<InverseDynamics>(k, "inverse_dynamics", compute_inverse_dynamics);
+    advertise<InverseDynamics>(k, "inverse_dynamics", with_base(compute_inverse_dynamics));
     advertise<InverseDynamicsTrajectory>(k, "inverse_dynamics_trajectory", compute_inverse_dynamics_trajectory);
-    advertise<ForwardDynamics>(k, "forward_dynamics", compute_forward_dynamics);
-    advertise<MassMatrix>(k, "mass_matrix", compute_mass_matrix);
+    advertise<ForwardDynamics>(k, "forward_dynamics", with_base(compute_forward_dynamics));
+    advertise<MassMatrix>(k, "mass_matrix", with_base(compute_mass_matrix));
   }
 }
 
@@ -73,6 +78,12 @@ bool ServiceEndpoints::onSetPayload(SetPayload::Request& req, SetPayload::Respon
   payload.center_of_mass = Eigen::Vector3d(in.com.x, in.com.y, in.com.z);
   payload.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
   res.success = store_.setPayload(req.frame, payload, res.message);
+  if (res.success) ROS_INFO("dynamics: %s", res.message.c_str());
+  return true;
+}
+
+bool ServiceEndpoints::onSetContacts(SetContacts::Request& req, SetContacts::Response& res) {
+  res.success = store_.setContacts(ContactSpec{req.frames, req.kinds, req.frictions}, res.message);
   if (res.success) ROS_INFO("dynamics: %s", res.message.c_str());
   return true;
 }

@@ -60,6 +60,9 @@ std::string differences_note(std::size_t velocities, std::size_t accelerations, 
 void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws,
                                          const InverseDynamicsTrajectory::Request& req,
                                          InverseDynamicsTrajectory::Response& res) {
+  if (scene.model->floating_base)
+    throw std::runtime_error("inverse_dynamics_trajectory serves fixed-base robots (~root_joint is floating): call "
+                             "inverse_dynamics at each point with its base state");
   const JointRequestDecoder& decoder = *scene.decoder;
   const Model<double>& model = model_for(scene, req.rigid_body_only);
   const trajectory_msgs::JointTrajectory& trajectory = req.trajectory;

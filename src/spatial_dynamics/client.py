@@ -16,6 +16,14 @@ Joint inputs (position, velocity, acceleration, effort) are each one of
   - a sequence (list, tuple, numpy array) in the model's joint order, full length.
 Mappings and sequences cannot be mixed in one call (ValueError).
 
+A floating base (~root_joint floating) takes base_pose (a geometry_msgs/Pose, or (position xyz,
+quaternion xyzw)), base_twist and base_acceleration (a Twist/Accel message, or six numbers
+(wx wy wz vx vy vz) in the root link's axes); left out, the node takes its base state (odometry or
+tf). contacts=[(frame, kind[, friction]) or {frame, kind, friction}] replaces the node's contacts
+for one call; ignore_contacts=True uses none. The answers then carry `contact_wrenches` (WrenchResult
+per contact, in its frame), `base_wrench` (WrenchResult in the root link's axes), `contact_violations`
+and, from forward_dynamics, `base_acceleration` (six numbers, angular first).
+
 Answers keep the node's joint order (the response's `name`). A `success: false` answer raises
 DynamicsError with the node's message verbatim; a failed call (no such service, node gone) raises
 DynamicsError naming the service. A successful answer's `message` (warnings: a position outside its
@@ -28,15 +36,15 @@ import genpy
 import numpy as np
 import rosgraph.names
 import rospy
-from geometry_msgs.msg import Inertia, Point, Vector3, Wrench, WrenchStamped
+from geometry_msgs.msg import Accel, Inertia, Point, Pose, Quaternion, Twist, Vector3, Wrench, WrenchStamped
 from std_srvs.srv import Trigger, TriggerRequest
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from spatial_dynamics.srv import (ExcitationTrajectory, ExcitationTrajectoryRequest, ForwardDynamics,
                                   ForwardDynamicsRequest, IdentifyPayload, IdentifyPayloadRequest, InverseDynamics,
                                   InverseDynamicsRequest, InverseDynamicsTrajectory, InverseDynamicsTrajectoryRequest, MassMatrix,
-                                  MassMatrixRequest, SetPayload, SetPayloadRequest, TransformWrench,
-                                  TransformWrenchRequest)
+                                  MassMatrixRequest, SetContacts, SetContactsRequest, SetPayload, SetPayloadRequest,
+                                  TransformWrench, TransformWrenchRequest)
 
 __all__ = ['DynamicsClient', 'DynamicsError', 'ExcitationResult', 'JointValues', 'MassMatrixResult', 'PayloadResult',
            'TrajectoryResult', 'WrenchResult']
@@ -249,6 +257,65 @@ def _to_wrench_stamped(wrench):
                      '{frame, force, torque}; got %r' % (wrench,))
 
 
+def _pose(pose):
+    """A geometry_msgs/Pose, or (position xyz, quaternion xyzw)."""
+    if isinstance(pose, Pose):
+        return pose
+    position, orientation = pose
+    p = _vector3(position, 'base_pose position')
+    o = np.asarray(orientation, dtype=float).ravel()
+    if o.shape != (4,):
+        raise ValueError('base_pose orientation must be a quaternion (x, y, z, w), not %d numbers' % o.size)
+    return Pose(position=Point(*p), orientation=Quaternion(*o))
+
+
+def _six(value, message_type, what):
+    """A Twist or Accel message, or six numbers (angular xyz, linear xyz)."""
+    if isinstance(value, message_type):
+        return value
+    v = np.asarray(value, dtype=float).ravel()
+    if v.shape != (6,):
+        raise ValueError('%s must be a %s or six numbers (wx wy wz vx vy vz), not %d' % (what, message_type.__name__, v.size))
+    return message_type(angular=Vector3(*v[:3]), linear=Vector3(*v[3:]))
+
+
+def _contact_lists(contacts):
+    """[(frame, kind[, friction])] or [{frame, kind, friction}] -> (frames, kinds, frictions)."""
+    frames, kinds, frictions = [], [], []
+    for contact in contacts:
+        if _is_mapping(contact):
+            frame, kind, friction = contact['frame'], contact['kind'], contact.get('friction')
+        else:
+            frame, kind, friction = (tuple(contact) + (None,))[:3]
+        frames.append(str(frame))
+        kinds.append(str(kind))
+        frictions.append(friction)
+    if all(f is None for f in frictions):
+        return frames, kinds, []
+    return frames, kinds, [0.0 if f is None else float(f) for f in frictions]
+
+
+def _set_base_and_contacts(request, base_pose, base_twist, contacts, ignore_contacts):
+    if base_pose is not None:
+        request.base_pose = _pose(base_pose)
+    if base_twist is not None:
+        request.base_twist = _six(base_twist, Twist, 'base_twist')
+    if contacts is not None:
+        request.contact_frames, request.contact_kinds, request.contact_frictions = _contact_lists(contacts)
+    request.ignore_contacts = bool(ignore_contacts)
+
+
+def _with_contact_answers(result, response):
+    def result_of(w):
+        return WrenchResult(w.header.frame_id, (w.wrench.force.x, w.wrench.force.y, w.wrench.force.z),
+                            (w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z), w.header.stamp)
+    result.contact_wrenches = [result_of(w) for w in response.contact_wrenches]
+    b = response.base_wrench
+    result.base_wrench = WrenchResult('', (b.force.x, b.force.y, b.force.z), (b.torque.x, b.torque.y, b.torque.z))
+    result.contact_violations = list(response.contact_violations)
+    return result
+
+
 def _duration(t):
     return t if isinstance(t, genpy.Duration) else rospy.Duration.from_sec(float(t))
 
@@ -280,6 +347,7 @@ class DynamicsClient(object):
         'mass_matrix': MassMatrix,
         'transform_wrench': TransformWrench,
         'set_payload': SetPayload,
+        'set_contacts': SetContacts,
         'reload': Trigger,
         'excitation_trajectory': ExcitationTrajectory,
         'identify_payload': IdentifyPayload,
@@ -333,39 +401,51 @@ class DynamicsClient(object):
     # --- joint services ---------------------------------------------------------------------
 
     def inverse_dynamics(self, position=None, velocity=None, acceleration=None, external_wrenches=(),
-                         rigid_body_only=False):
+                         rigid_body_only=False, base_pose=None, base_twist=None, base_acceleration=None,
+                         contacts=None, ignore_contacts=False):
         """tau = ID(q, qd, qdd, wrenches), as JointValues of the efforts, with the actuator terms of
         the node's ~actuator_model unless rigid_body_only. Its `actuator_effort` is the actuators'
-        part of the efforts (JointValues), or None when the answer has none."""
+        part of the efforts (JointValues), or None when the answer has none; a floating base's
+        `contact_wrenches`, `base_wrench` and `contact_violations` as in the module's text."""
         request = InverseDynamicsRequest()
         request.name, (request.position, request.velocity, request.acceleration) = _joint_arrays(
             [('position', position, False), ('velocity', velocity, False), ('acceleration', acceleration, True)])
         request.external_wrenches = [_to_wrench_stamped(w) for w in external_wrenches or ()]
         request.rigid_body_only = bool(rigid_body_only)
+        _set_base_and_contacts(request, base_pose, base_twist, contacts, ignore_contacts)
+        if base_acceleration is not None:
+            request.base_acceleration = _six(base_acceleration, Accel, 'base_acceleration')
         response = self._call('inverse_dynamics', request)
         result = JointValues(response.name, response.effort, response.message)
         result.actuator_effort = (JointValues(response.name, response.actuator_effort)
                                   if response.actuator_effort else None)
-        return result
+        return _with_contact_answers(result, response)
 
     def forward_dynamics(self, position=None, velocity=None, effort=None, external_wrenches=(),
-                         rigid_body_only=False):
+                         rigid_body_only=False, base_pose=None, base_twist=None, contacts=None, ignore_contacts=False):
         """qdd = FD(q, qd, tau, wrenches), as JointValues of the accelerations (actuator terms as
-        for inverse_dynamics)."""
+        for inverse_dynamics); a floating base's `base_acceleration` and contact answers as in the
+        module's text."""
         request = ForwardDynamicsRequest()
         request.name, (request.position, request.velocity, request.effort) = _joint_arrays(
             [('position', position, False), ('velocity', velocity, False), ('effort', effort, True)])
         request.external_wrenches = [_to_wrench_stamped(w) for w in external_wrenches or ()]
         request.rigid_body_only = bool(rigid_body_only)
+        _set_base_and_contacts(request, base_pose, base_twist, contacts, ignore_contacts)
         response = self._call('forward_dynamics', request)
-        return JointValues(response.name, response.acceleration, response.message)
+        result = _with_contact_answers(JointValues(response.name, response.acceleration, response.message), response)
+        a = response.base_acceleration
+        result.base_acceleration = np.array([a.angular.x, a.angular.y, a.angular.z, a.linear.x, a.linear.y, a.linear.z])
+        return result
 
-    def mass_matrix(self, position=None, rigid_body_only=False):
+    def mass_matrix(self, position=None, rigid_body_only=False, base_pose=None):
         """M(q) (+ diag(armature) with an actuator model, unless rigid_body_only) as a
-        MassMatrixResult (`matrix`, `names`)."""
+        MassMatrixResult (`matrix`, `names`); a floating base's six coordinates first."""
         request = MassMatrixRequest()
         request.name, (request.position,) = _joint_arrays([('position', position, False)])
         request.rigid_body_only = bool(rigid_body_only)
+        if base_pose is not None:
+            request.base_pose = _pose(base_pose)
         response = self._call('mass_matrix', request)
         n = len(response.name)
         if len(response.mass_matrix) != n * n:
@@ -432,6 +512,13 @@ class DynamicsClient(object):
         return WrenchResult(w.header.frame_id, (w.wrench.force.x, w.wrench.force.y, w.wrench.force.z),
                             (w.wrench.torque.x, w.wrench.torque.y, w.wrench.torque.z), w.header.stamp,
                             response.message)
+
+    def set_contacts(self, contacts):
+        """Replaces the node's contacts (~set_contacts) for every scene: [(frame, kind[, friction])
+        or {frame, kind, friction}]; an empty list: none. Returns the node's message."""
+        request = SetContactsRequest()
+        request.frames, request.kinds, request.frictions = _contact_lists(contacts)
+        return self._call('set_contacts', request).message
 
     def set_payload(self, frame, mass, center_of_mass=(0.0, 0.0, 0.0), inertia=None):
         """Attaches a rigid payload to `frame`: `mass` [kg], `center_of_mass` [m] in the frame,

@@ -451,5 +451,51 @@ class PythonClient(unittest.TestCase):
         np.testing.assert_array_equal(self.client.inverse_dynamics(q, qd, qdd).as_array(), before)
 
 
+    def test_zz_floating_base(self):
+        """A floating Panda (~root_joint floating, reloaded): the base and contact fields in and out.
+        Runs last: it reloads the robot twice."""
+        rospy.set_param(NS + '/root_joint', 'floating')
+        try:
+            self.client.reload()
+            q, qd, tau = self.random_q(), self.random_v(), self.random_v(5.0)
+            pose = ((0.1, -0.2, 0.3), (0.0, 0.0, np.sin(0.2), np.cos(0.2)))
+            twist = [0.1, -0.2, 0.3, 0.0, 0.1, -0.1]
+            hand = [('panda_hand', 'surface', 0.5)]
+            # FD with the hand held, then ID of its accelerations: the same joint torques and wrench.
+            fd = self.client.forward_dynamics(q, qd, tau, base_pose=pose, base_twist=twist, contacts=hand)
+            self.assertEqual(len(fd.base_acceleration), 6)
+            self.assertEqual([w.frame for w in fd.contact_wrenches], ['panda_hand'])
+            inv = self.client.inverse_dynamics(q, qd, fd.as_array(), base_pose=pose, base_twist=twist,
+                                               base_acceleration=fd.base_acceleration, contacts=hand)
+            self.assertLess(relative_error(inv.as_array(), tau), 1e-9)
+            self.assertLess(relative_error(inv.contact_wrenches[0].as_array(), fd.contact_wrenches[0].as_array()), 1e-9)
+            self.assertLess(np.max(np.abs(inv.base_wrench.as_array())), 1e-9)
+            # Without contacts the base wrench is what the motion needs; the mass matrix covers the base.
+            free = self.client.inverse_dynamics(q, qd, fd.as_array(), base_pose=pose, base_twist=twist,
+                                                base_acceleration=fd.base_acceleration, ignore_contacts=True)
+            self.assertEqual(free.contact_wrenches, [])
+            self.assertGreater(np.linalg.norm(free.base_wrench.as_array()), 1.0)
+            m = self.client.mass_matrix(q, base_pose=pose)
+            self.assertEqual(m.names[:6], ['root_joint/%s' % c for c in ('wx', 'wy', 'wz', 'vx', 'vy', 'vz')])
+            self.assertEqual(m.matrix.shape, (self.n + 6, self.n + 6))
+            # The node's contacts, set by name; a bad one refused naming it.
+            self.assertIn('panda_hand', self.client.set_contacts([{'frame': 'panda_hand', 'kind': 'point'}]))
+            held = self.client.inverse_dynamics(q, qd, base_pose=pose)
+            self.assertEqual([w.frame for w in held.contact_wrenches], ['panda_hand'])
+            with self.assertRaises(DynamicsError) as caught:
+                self.client.set_contacts([('no_such_frame', 'point')])
+            self.assertIn("'no_such_frame'", str(caught.exception))
+            with self.assertRaises(DynamicsError) as caught:
+                self.client.inverse_dynamics(q, qd, base_pose=((0, 0, 0), (0, 0, 0, 2.0)))
+            self.assertIn('base_pose.orientation', str(caught.exception))
+            self.client.set_contacts([])
+        finally:
+            rospy.set_param(NS + '/root_joint', 'fixed')
+            self.client.reload()
+        with self.assertRaises(DynamicsError) as caught:
+            self.client.inverse_dynamics(base_pose=((0, 0, 0), (0, 0, 0, 1)))
+        self.assertIn('base_pose', str(caught.exception))
+
+
 if __name__ == '__main__':
     rostest.rosrun(PKG, 'node_python_client', PythonClient, sys.argv)

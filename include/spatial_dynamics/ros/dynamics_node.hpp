@@ -2,7 +2,7 @@
 // forward dynamics, the mass matrix and wrench transforms for the whole robot and for configured
 // scenes (reduced models), manages payloads, and publishes computed torques. It only wires its
 // parts, each with one job: the configuration (node_config.hpp), the models served
-// (model_store.hpp), the services (service_endpoints.hpp), the joint-state pipeline
+// (model_store.hpp), a floating base's state (base_state_tracker.hpp), the services (service_endpoints.hpp), the joint-state pipeline
 // (joint_state_pipeline.hpp), the external-torque estimate (external_torque_monitor.hpp), payload
 // identification (payload_identification_endpoint.hpp) and diagnostics (node_diagnostics.hpp). The arithmetic is the
 // library's; message ↔ vector translation is the service handlers' (service_handlers.hpp).
@@ -13,6 +13,7 @@
 
 #include <ros/ros.h>
 
+#include "spatial_dynamics/ros/base_state_tracker.hpp"
 #include "spatial_dynamics/ros/joint_state_pipeline.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
 #include "spatial_dynamics/ros/node_diagnostics.hpp"
@@ -39,6 +40,7 @@ class DynamicsNode {
   TfFrames tf_frames_{tf_buffer_};
   const ModelStore::SourceReader read_source_;  // robot_description, ~gravity, ~actuator_model, ~actuators
   ModelStore store_;
+  BaseStateTracker base_state_;  // a floating base's pose and twist: ~base_odometry or tf
   // Destroyed in reverse: diagnostics, then joint_states (unsubscribed before the store goes).
   ServiceEndpoints services_;
   ExternalTorqueMonitor external_torques_;

@@ -21,8 +21,9 @@ class JointRequestDecoder {
   /// What a joint left out of a request takes.
   enum class Default { LatestPosition, LatestVelocity, Zero };
 
-  /// The coordinates of `model` (a fixed-base model: one per joint with a coordinate of its
-  /// own), and where each joint sits in the joint-state cache's order `state_joint_names`.
+  /// The coordinates of `model`'s joints (one per joint with a coordinate of its own; a floating
+  /// base's free root joint is not one of them: its coordinates lead q and q̇, and the joints' are the
+  /// last jointNames().size()), and where each joint sits in the joint-state cache's order.
   JointRequestDecoder(const Model<double>& model, const std::vector<std::string>& state_joint_names);
 
   /// Maps request names to joint indices; fails on an unknown or repeated name.
@@ -33,7 +34,8 @@ class JointRequestDecoder {
                      const std::vector<double>& values, Default fallback, const JointStateCache::Snapshot& state,
                      Eigen::VectorXd& out) const;
 
-  /// "joint 'x' position 1.2 is outside its limits [a, b]" for every such joint ("" if none);
+  /// "joint 'x' position 1.2 is outside its limits [a, b]" for every such joint ("" if none), of
+  /// the joints' coordinates (q's last jointNames().size());
   /// an empty range (URDF lower = upper, e.g. both left at 0) counts as no limits.
   std::string limitWarnings(const Eigen::VectorXd& q) const;
 

@@ -1,6 +1,6 @@
 // The models the node serves: the robot (loaded, with its payloads) and one model per configured
 // scene, as one immutable snapshot swapped whole (served_model.hpp), so that a call in progress
-// keeps the snapshot it started with. Loading, ~reload, ~set_payload and the rebuild of a scene
+// keeps the snapshot it started with. Loading, ~reload, ~set_payload, ~set_contacts and the rebuild of a scene
 // whose locked joint has moved all go through here. No ROS here: the node reads the parameters
 // (node_config.hpp), logs and answers.
 #pragma once
@@ -20,7 +20,7 @@ namespace spatial_dynamics {
 
 class ModelStore {
  public:
-  explicit ModelStore(NodeConfig config) : config_(std::move(config)) {}
+  explicit ModelStore(NodeConfig config) : config_(std::move(config)), contacts_(config_.contacts) {}
 
   const NodeConfig& config() const { return config_; }
   std::size_t sceneCount() const { return config_.scenes.size(); }
@@ -41,6 +41,10 @@ class ModelStore {
   /// ~set_payload: `payload` attached to `frame` (a link of the robot), or the frame's payload
   /// removed where payload.mass is 0. The message says what was done or why not.
   bool setPayload(const std::string& frame, const Payload& payload, std::string& message);
+
+  /// ~set_contacts: the robot's contacts for every scene from now on (reloads keep them). The
+  /// message says what was set, or names the frame, kind or coefficient refused.
+  bool setContacts(const ContactSpec& contacts, std::string& message);
 
   /// The payloads attached now, by frame.
   std::map<std::string, Payload> payloads();
@@ -73,6 +77,7 @@ class ModelStore {
   std::string load_error_;
   std::mutex payload_mutex_;  // serialises ~set_payload and ~reload
   std::map<std::string, Payload> payloads_;
+  ContactSpec contacts_;  // ~contacts, then the last ~set_contacts (guarded by payload_mutex_)
 };
 
 }  // namespace spatial_dynamics

@@ -1,6 +1,6 @@
 // The node's parameters (doc/node.md), each read and checked here and nowhere else: a refusal
 // names the parameter. The configuration is read once at start-up; what a model is loaded from
-// (robot_description, ~gravity, ~actuator_model, ~actuators) is read again on every ~reload.
+// (robot_description, ~gravity, ~actuator_model, ~actuators, ~root_joint) is read again on every ~reload.
 #pragma once
 
 #include <string>
@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "spatial_dynamics/ros/actuator_parameters.hpp"
+#include "spatial_dynamics/ros/contact_spec.hpp"
 #include "spatial_dynamics/ros/external_torque_settings.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
 
@@ -39,6 +40,9 @@ struct NodeConfig {
   bool coupled_mimic_joints = false;     // ~mimic_joints: 'coupled' (true) or 'independent'
   JointStateCache::UnknownJoints unknown_joints = JointStateCache::UnknownJoints::kDrop;  // ~unknown_joints
   bool inline_joint_states = true;       // ~inline_joint_states
+  std::string base_odometry;             // ~base_odometry: nav_msgs/Odometry topic of a floating base ("" : tf)
+  std::string world_frame = "odom";      // ~world_frame: tf's frame of a floating base's pose
+  ContactSpec contacts;                  // ~contacts: [{frame, kind, friction}], until ~set_contacts
   std::vector<SceneConfig> scenes;       // [0]: the main services (~joints, ~root_link, ~tip_links); ~scenes/<name>
   std::string error;                     // the first bad parameter: the node then loads no model and says why
 };
@@ -57,9 +61,10 @@ struct RobotSource {
   std::string urdf;                                  // robot_description
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};          // ~gravity
   ActuatorSettings actuators;                        // ~actuator_model, ~actuators
+  bool floating_base = false;                        // ~root_joint: fixed (false) or floating
 };
 
-/// robot_description, ~gravity, ~actuator_model and ~actuators as they are now; throws
+/// robot_description, ~gravity, ~actuator_model, ~actuators and ~root_joint as they are now; throws
 /// std::runtime_error naming the parameter that is missing or malformed.
 RobotSource read_robot_source(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
 

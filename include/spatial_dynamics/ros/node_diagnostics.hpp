@@ -1,12 +1,13 @@
 // The node's /diagnostics status, once a second: the SIMD backend, the joint-state pipeline's
-// rates, drops and latency, each service's calls and failures, the external-torque estimate, the
-// robot served and, as the summary, what stops it serving (no model, a scene's error, a refused
+// rates, drops and latency, each service's calls and failures, the external-torque estimate, a
+// floating base's state, the robot served and, as the summary, what stops it serving (no model, a scene's error, a refused
 // ~external_torques parameter) or waits (incomplete joint states).
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 
+#include "spatial_dynamics/ros/base_state_tracker.hpp"
 #include "spatial_dynamics/ros/external_torque_monitor.hpp"
 #include "spatial_dynamics/ros/joint_state_pipeline.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
@@ -19,7 +20,8 @@ class NodeDiagnostics {
  public:
   NodeDiagnostics(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, const ModelStore& store,
                   const ServiceEndpoints& services, JointStatePipeline& joint_states,
-                  ExternalTorqueMonitor& external_torques, const PayloadIdentificationEndpoint& payload_identification);
+                  ExternalTorqueMonitor& external_torques, const PayloadIdentificationEndpoint& payload_identification,
+                  const BaseStateTracker& base_state);
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -29,6 +31,7 @@ class NodeDiagnostics {
   JointStatePipeline& joint_states_;
   ExternalTorqueMonitor& external_torques_;
   const PayloadIdentificationEndpoint& payload_identification_;
+  const BaseStateTracker& base_state_;
   diagnostic_updater::Updater updater_;
   ros::Timer timer_;
 };

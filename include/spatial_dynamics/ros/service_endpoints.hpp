@@ -1,5 +1,5 @@
 // The node's services (doc/node.md): per scene inverse_dynamics, inverse_dynamics_trajectory,
-// forward_dynamics and mass_matrix; transform_wrench, reload and set_payload. Each call runs a
+// forward_dynamics and mass_matrix; transform_wrench, reload, set_payload and set_contacts. Each call runs a
 // ROS-free handler (service_handlers.hpp) on its scene's current snapshot with a workspace leased
 // from the scene's pool; an error becomes success = false with its message, and the client always
 // receives the body. Calls and failures are counted for diagnostics.
@@ -16,7 +16,9 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
+#include "spatial_dynamics/SetContacts.h"
 #include "spatial_dynamics/SetPayload.h"
+#include "spatial_dynamics/ros/base_state.hpp"
 #include "spatial_dynamics/ros/model_store.hpp"
 #include "spatial_dynamics/ros/service_handlers.hpp"
 
@@ -24,10 +26,10 @@ namespace spatial_dynamics {
 
 class ServiceEndpoints {
  public:
-  /// Advertises every service under `private_nh`; `frames` resolves frames outside the robot and
-  /// `source` reads what ~reload loads.
+  /// Advertises every service under `private_nh`; `frames` resolves frames outside the robot, `base`
+  /// gives a floating base's state and `source` reads what ~reload loads.
   ServiceEndpoints(ros::NodeHandle private_nh, ModelStore& store, const FrameLookup& frames,
-                   ModelStore::SourceReader source);
+                   const BaseStateSource& base, ModelStore::SourceReader source);
 
   /// Calls and failures of each service.
   void report(diagnostic_updater::DiagnosticStatusWrapper& status) const;
@@ -51,10 +53,12 @@ class ServiceEndpoints {
 
   bool onReload(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
+  bool onSetContacts(SetContacts::Request& req, SetContacts::Response& res);
 
   ros::NodeHandle private_nh_;
   ModelStore& store_;
   const FrameLookup& frames_;
+  const BaseStateSource& base_;
   ModelStore::SourceReader source_;
   std::function<void()> reloaded_;
   std::deque<Counters> counters_;  // stable addresses: the callbacks hold them

@@ -9,6 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/WrenchStamped.h>
+#include <sensor_msgs/JointState.h>
+
+#include "spatial_dynamics/CentroidalState.h"
 #include "spatial_dynamics/ForwardDynamics.h"
 #include "spatial_dynamics/InverseDynamics.h"
 #include "spatial_dynamics/InverseDynamicsTrajectory.h"
@@ -16,6 +20,7 @@
 #include "spatial_dynamics/TransformWrench.h"
 #include "spatial_dynamics/model/batch_data.hpp"
 #include "spatial_dynamics/model/data.hpp"
+#include "spatial_dynamics/ros/base_state.hpp"
 #include "spatial_dynamics/ros/served_model.hpp"
 
 namespace spatial_dynamics {
@@ -44,22 +49,35 @@ class FrameLookup {
                                              const ros::Time& stamp) const = 0;
 };
 
-void compute_inverse_dynamics(const ServedScene& scene, Workspace& ws, const InverseDynamics::Request& req,
-                              InverseDynamics::Response& res);
+/// Inverse dynamics; a floating base's state from the request or `base`, with the contacts of the
+/// call (contact_answers.hpp): τ of the joints, λ, and the wrench left on the base.
+void compute_inverse_dynamics(const ServedScene& scene, const BaseStateSource& base, Workspace& ws,
+                              const InverseDynamics::Request& req, InverseDynamics::Response& res);
 /// τ at every point of a trajectory (batched RNEA), with peak efforts and effort-limit violations;
-/// missing velocities and accelerations by finite differences (trajectory_handler.cpp).
+/// missing velocities and accelerations by finite differences (trajectory_handler.cpp). Fixed
+/// bases only.
 void compute_inverse_dynamics_trajectory(const ServedScene& scene, Workspace& ws,
                                          const InverseDynamicsTrajectory::Request& req,
                                          InverseDynamicsTrajectory::Response& res);
-void compute_forward_dynamics(const ServedScene& scene, Workspace& ws, const ForwardDynamics::Request& req,
-                              ForwardDynamics::Response& res);
-void compute_mass_matrix(const ServedScene& scene, Workspace& ws, const MassMatrix::Request& req,
-                         MassMatrix::Response& res);
+/// Forward dynamics; with contacts, q̈ and λ of the constrained system; a floating base's acceleration.
+void compute_forward_dynamics(const ServedScene& scene, const BaseStateSource& base, Workspace& ws,
+                              const ForwardDynamics::Request& req, ForwardDynamics::Response& res);
+/// M(q), a floating base's six rows and columns first.
+void compute_mass_matrix(const ServedScene& scene, const BaseStateSource& base, Workspace& ws,
+                         const MassMatrix::Request& req, MassMatrix::Response& res);
 void compute_transform_wrench(const ServedScene& scene, Workspace& ws, const FrameLookup& frames,
                               const TransformWrench::Request& req, TransformWrench::Response& res);
 
-/// ID(q, q̇, 0) of the latest joint states, for ~computed_torques; false when they are incomplete.
-bool compute_latest_torques(const ServedScene& scene, Workspace& ws, std::vector<double>& position,
-                            std::vector<double>& velocity, std::vector<double>& effort);
+/// ~computed_torques: ID(q, q̇, 0) of the latest joint states; for a floating base the base at rest at
+/// its pose at `stamp` and, with the scene's contacts, the contact-consistent torques and the
+/// contact wrenches (`wrenches`, else empty). False when the joint states are incomplete.
+bool compute_latest_torques(const ServedScene& scene, const BaseStateSource& base, Workspace& ws, const ros::Time& stamp,
+                            sensor_msgs::JointState& torques, std::vector<geometry_msgs::WrenchStamped>& wrenches);
+
+/// ~centroidal_state of the latest joint states (and a floating base's state at `stamp`): the centre
+/// of mass, its velocity and the momentum about it, in the world frame (a fixed base's root link).
+/// False when the joint states are incomplete.
+bool compute_centroidal_state(const ServedScene& scene, const BaseStateSource& base, Workspace& ws,
+                              const ros::Time& stamp, CentroidalState& out);
 
 }  // namespace spatial_dynamics

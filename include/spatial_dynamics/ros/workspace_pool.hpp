@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "spatial_dynamics/model/batch_data.hpp"
+#include "spatial_dynamics/model/contact_data.hpp"
 #include "spatial_dynamics/model/data.hpp"
 #include "spatial_dynamics/ros/joint_state_cache.hpp"
 
@@ -24,8 +25,18 @@ struct Workspace {
   JointStateCache::Snapshot state;
   std::vector<int> indices;
   Eigen::VectorXd q, qd, x;
+  Eigen::VectorXd joint_values;                     // one request array, before it goes into q, q̇ or x
+  ContactSet<double> request_contacts;              // a request's own contacts (contact_frames)
+  std::unique_ptr<ContactData<double>> contact_data;  // sized for the last contact set used
   std::vector<ForceVector<double>> f_ext;
   Eigen::MatrixXd trajectory_q, trajectory_qd, trajectory_qdd, trajectory_tau;  // one column per point
+
+  /// The contact work space for `contacts` on `model`: reallocated only when the set's size changes.
+  ContactData<double>& contactData(const Model<double>& model, const ContactSet<double>& contacts) {
+    if (!contact_data || contact_data->J.rows() != contacts.rows || contact_data->J.cols() != model.nv)
+      contact_data = std::make_unique<ContactData<double>>(model, contacts);
+    return *contact_data;
+  }
 };
 
 class WorkspacePool {
