@@ -1,7 +1,7 @@
 // Integration test of a floating base (~root_joint floating) with contacts, the base's state from
 // odometry (~base_odometry) or from tf (~world_frame), by name through the node: every service with
 // and without contacts, ~computed_torques with ~computed_contact_wrenches, ~centroidal_state,
-// ~set_contacts, and each bad input named. The expected numbers are an independent float128
+// ~set_contacts, a scene (the legs) and a payload on the base, and each bad input named. The expected numbers are an independent float128
 // solution (contact_oracle.hpp: the reference's ID, M and h, J_c by differences of frame poses,
 // dense pseudo-inverses). Launched by node_floating_base.test with ~robot (talos: two surface
 // soles; solo12: four point feet) and ~base_source (odometry | tf).
@@ -20,6 +20,7 @@
 #include "spatial_dynamics/ContactWrenches.h"
 #include "spatial_dynamics/InverseDynamicsTrajectory.h"
 #include "spatial_dynamics/SetContacts.h"
+#include "spatial_dynamics/SetPayload.h"
 #include "spatial_dynamics/algorithms/centroidal.hpp"
 #include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "spatial_dynamics/reference/mass_matrix.hpp"
@@ -479,6 +480,63 @@ TEST_F(FloatingBase, CentroidalStateIsPublishedInTheWorldFrame) {
   const Eigen::Vector3d c_dot_node(c.center_of_mass_velocity.x, c.center_of_mass_velocity.y, c.center_of_mass_velocity.z);
   EXPECT_LT((c_dot_node - c_dot).norm(), 1e-12 * (1.0 + c_dot.norm()));
   EXPECT_LT((p - static_cast<double>(mass) * c_dot).norm(), 1e-9 * (1.0 + p.norm()));
+}
+
+// The scene "legs" (root link to the contact frames; the launch file) locks the other joints at their
+// latest joint states: its answer is the whole robot's with those joints still. A payload on the root
+// link adds its weight to the base wrench the robot at rest needs, in the root link's axes.
+TEST_F(FloatingBase, ASceneAndAPayloadOnAFloatingBase) {
+  startBase();
+  const VectorXd q = stance();
+  sensor_msgs::JointState tau;
+  sd::ContactWrenches w;
+  sd::CentroidalState c;
+  ASSERT_TRUE(publishJoints(q, tau, w, c));  // the scene's locked joints follow
+  sd::InverseDynamics scene;
+  setBase(scene.request);
+  ros::service::call(service("legs/inverse_dynamics"), scene);
+  ASSERT_TRUE(scene.response.success) << scene.response.message;
+  if (robot_ == "talos") EXPECT_LT(scene.response.name.size(), names.size()) << "the arms, torso and head locked";
+  const sd::InverseDynamics full = call("inverse_dynamics", request(q, VectorXd::Zero(model.nv - 6), true));
+  ASSERT_TRUE(full.response.success) << full.response.message;
+  VectorXd expected(scene.response.name.size());
+  for (std::size_t k = 0; k < scene.response.name.size(); ++k) {
+    const auto it = std::find(full.response.name.begin(), full.response.name.end(), scene.response.name[k]);
+    ASSERT_NE(it, full.response.name.end()) << scene.response.name[k];
+    expected[k] = full.response.effort[it - full.response.name.begin()];
+  }
+  std::printf("[%s] scene of %zu joints: effort %.3g, contact wrenches %.3g\n", robot_.c_str(), scene.response.name.size(),
+              sd_test::relative_error(to_eigen(scene.response.effort), expected),
+              sd_test::relative_error(stacked(scene.response.contact_wrenches, kinds), stacked(full.response.contact_wrenches, kinds)));
+  EXPECT_LT(sd_test::relative_error(to_eigen(scene.response.effort), expected), 1e-12);
+  EXPECT_LT(sd_test::relative_error(stacked(scene.response.contact_wrenches, kinds), stacked(full.response.contact_wrenches, kinds)),
+            1e-12);
+
+  // 2 kg at the root link's origin, the base at rest and no contacts: its weight, in root link axes.
+  sd::InverseDynamics at_rest = request(q, VectorXd::Zero(model.nv - 6), true);
+  at_rest.request.base_twist = geometry_msgs::Twist();
+  at_rest.request.ignore_contacts = true;
+  const sd::InverseDynamics before = call("inverse_dynamics", at_rest);
+  sd::SetPayload payload;
+  payload.request.frame = root_link_;
+  payload.request.inertia.m = 2.0;
+  payload.request.inertia.ixx = payload.request.inertia.iyy = payload.request.inertia.izz = 0.01;
+  payload = call("set_payload", payload);
+  ASSERT_TRUE(payload.response.success) << payload.response.message;
+  const sd::InverseDynamics after = call("inverse_dynamics", at_rest);
+  payload.request.inertia.m = 0.0;
+  payload = call("set_payload", payload);
+  ASSERT_TRUE(after.response.success && before.response.success) << after.response.message;
+  const auto wrench = [](const geometry_msgs::Wrench& b) {
+    VectorXd v(6);
+    v << b.torque.x, b.torque.y, b.torque.z, b.force.x, b.force.y, b.force.z;
+    return v;
+  };
+  VectorXd weight = VectorXd::Zero(6);
+  weight.tail(3) = Base().orientation.conjugate() * Eigen::Vector3d(0.0, 0.0, 2.0 * 9.81);  // −m g in root axes
+  EXPECT_LT((wrench(after.response.base_wrench) - wrench(before.response.base_wrench) - weight).norm(), 1e-12 * 9.81 * 2.0);
+  EXPECT_LT(sd_test::relative_error(to_eigen(after.response.effort), to_eigen(before.response.effort)), 1e-14)
+      << "a payload at the root link loads no joint";
 }
 
 TEST_F(FloatingBase, BadInputsAreNamed) {
