@@ -30,6 +30,12 @@ Eigen::Matrix<double, 6, 1> angular_linear(const geometry_msgs::Accel& accelerat
   return stacked(acceleration, field);
 }
 
+void set_base_coordinates(const BaseState& state, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  q.head<3>() = state.position;
+  q.segment<4>(3) = state.orientation.coeffs();  // (x y z w)
+  qd.head<6>() = state.twist;
+}
+
 void decode_given_base(const geometry_msgs::Pose& pose, const geometry_msgs::Twist& twist, Eigen::VectorXd& q,
                        Eigen::VectorXd& qd) {
   const geometry_msgs::Point& p = pose.position;
@@ -54,9 +60,7 @@ void decode_base(const std::string& root_link, const BaseStateSource& source, co
   }
   BaseState state;
   source.state(root_link, stamp, state);
-  q.head<3>() = state.position;
-  q.segment<4>(3) = state.orientation.coeffs();  // (x y z w)
-  qd.head<6>() = state.twist;
+  set_base_coordinates(state, q, qd);
   if (!state.note.empty()) notes += (notes.empty() ? "" : "; ") + state.note;
 }
 

@@ -15,11 +15,6 @@ void check(const std::string& error) {
   if (!error.empty()) throw std::runtime_error(error);
 }
 
-template <class Vector>
-void copy_to(const Vector& v, std::vector<double>& out) {
-  out.assign(v.data(), v.data() + v.size());
-}
-
 /// One joint array of a request into the joints' coordinates of `out` (size `size`): its last n,
 /// after a floating base's (all of it for a fixed base).
 void decode_joint_array(const ServedScene& scene, Workspace& ws, const std::string& field,
@@ -127,15 +122,13 @@ bool decode_latest_state(const ServedScene& scene, const BaseStateSource& base, 
   decode_joint_array(scene, ws, "velocity", {}, {}, JointRequestDecoder::Default::LatestVelocity, ws.qd, model.nv);
   if (model.floating_base) {
     base.state(scene.robot->root_frame, stamp, state);
-    ws.q.head<3>() = state.position;
-    ws.q.segment<4>(3) = state.orientation.coeffs();  // (x y z w)
-    if (!base_at_rest) ws.qd.head<6>() = state.twist;
+    set_base_coordinates(state, ws.q, ws.qd);
+    if (base_at_rest) ws.qd.head<6>().setZero();
   }
   return true;
 }
 
-/// The contact answers: wrenches, violations and, for inverse dynamics of a floating base, whether
-/// the contacts leave a wrench on the base.
+/// The contact answers: each contact's wrench, and the contacts that pull or slip.
 template <class Response>
 void answer_contacts(const Model<double>& model, const ContactSet<double>& contacts, const ContactData<double>& cd,
                      Response& res) {

@@ -23,6 +23,9 @@ bool base_pose_given(const geometry_msgs::Pose& pose);
 Eigen::Matrix<double, 6, 1> angular_linear(const geometry_msgs::Twist& twist, const std::string& field);
 Eigen::Matrix<double, 6, 1> angular_linear(const geometry_msgs::Accel& acceleration, const std::string& field);
 
+/// q's first seven and q̇'s first six from a base state.
+void set_base_coordinates(const BaseState& state, Eigen::VectorXd& q, Eigen::VectorXd& qd);
+
 /// q's first seven and q̇'s first six from a given base_pose (a unit quaternion, finite) and base_twist.
 void decode_given_base(const geometry_msgs::Pose& pose, const geometry_msgs::Twist& twist, Eigen::VectorXd& q,
                        Eigen::VectorXd& qd);
