@@ -257,11 +257,14 @@ const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>&
   const MotionVector<S> a_0 = detail::gravity_base_acceleration(model);
   const MotionVector<S> a_0_root = balance ? data.X_up[root].apply(a_0) : a_0;
   for (std::size_t c = 0; c < contacts.contacts.size(); ++c) {
-    // ^FX_r along the frame's branch (^FX_0 off the root's tree).
+    // ^FX_j for the bodies j of the frame's branch (cd.contact_branch), then ^FX_r (^FX_0 off the root's tree).
     const Frame<S>& frame = model.frames[contacts.contacts[c].frame];
     PluckerTransform<S>& X = cd.contact_root[c] = frame.X_frame_body;
     int j = frame.body;
-    for (; j > 0 && j != root; j = model.parent[j]) X = X * data.X_up[j];
+    for (std::size_t t = 0; j > 0 && j != root; j = model.parent[j], ++t) {
+      if (balance) cd.contact_branch[c][t] = X;
+      X = X * data.X_up[j];
+    }
     cd.on_root[c] = j == root;
     detail::contact_acceleration(model, data, contacts.contacts[c], cd, X.apply(cd.on_root[c] ? a_0_root : a_0));
   }
@@ -274,23 +277,22 @@ const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>&
       cd.base_solver.compute(cd.base_rows);
       cd.lambda = cd.base_solver.solve(b);
     }
-    // τ −= J_cᵀ λ: each contact's wrench ^FX_Bᵀ λ carried down its branch, τ_j −= S_jᵀ f, f ← ^jX_λᵀ f
-    // (RNEA eqs. 5.10–5.11 for the one force), on a coupled joint's master coordinate scaled by k; the
-    // root's share of them all together, which leaves on the base rows the wrench not balanced.
+    // τ −= J_cᵀ λ: each contact's wrench in the coordinates of each body j of its branch, f = ^FX_jᵀ λ
+    // (what the RNEA's eq. 5.11 carries there), τ_j −= S_jᵀ f (eq. 5.10), on a coupled joint's master
+    // coordinate scaled by k; the root's share of them all together, which leaves on the base rows the
+    // wrench not balanced.
     ForceVector<S> f_root = ForceVector<S>::Zero();
-    for (const Contact<S>& contact : contacts.contacts) {
-      const Frame<S>& frame = model.frames[contact.frame];
-      ForceVector<S> f = frame.X_frame_body.applyInverse(detail::contact_wrench(contact, cd.lambda));
-      int i = frame.body;
-      for (; i > 0 && i != root; i = model.parent[i]) {
+    for (std::size_t c = 0; c < contacts.contacts.size(); ++c) {
+      const ForceVector<S> wrench = detail::contact_wrench(contacts.contacts[c], cd.lambda);
+      int i = model.frames[contacts.contacts[c].frame].body;
+      for (std::size_t t = 0; i > 0 && i != root; i = model.parent[i], ++t) {
         const Joint<S>& joint = model.joints[i];
         S projected[6];
-        body_joint_project(model, data, i, f, projected);
+        body_joint_project(model, data, i, cd.contact_branch[c][t].applyInverse(wrench), projected);
         const S k_i = coupling_multiplier(joint);
         for (int l = 0; l < joint.nv; ++l) cd.tau[joint.idx_v + l] -= k_i * projected[l];
-        if (model.parent[i] > 0) f = data.X_up[i].applyInverse(f);
       }
-      if (i == root) f_root += f;
+      if (cd.on_root[c]) f_root += cd.contact_root[c].applyInverse(wrench);
     }
     S projected[6];
     body_joint_project(model, data, root, f_root, projected);

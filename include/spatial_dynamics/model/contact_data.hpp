@@ -42,6 +42,8 @@ struct ContactData {
   // tree; with six rows or more, the base rows' Gram matrix B Bᵀ = Lᵀ L and L.
   std::vector<PluckerTransform<S>> contact_root;
   std::vector<char> on_root;
+  std::vector<std::vector<PluckerTransform<S>>> contact_branch;  // with a floating base: ^FX_j for the
+                                                                 // bodies j from the frame's to the root's child
   Matrix6<S> gram, gram_factor;
 
   ContactData(const Model<S>& model, const ContactSet<S>& contacts)
@@ -63,6 +65,7 @@ struct ContactData {
         K_factor(MatrixX<S>::Zero(contacts.rows, contacts.rows)),
         contact_root(contacts.contacts.size()),
         on_root(contacts.contacts.size(), 0),
+        contact_branch(contacts.contacts.size()),
         gram(Matrix6<S>::Zero()),
         gram_factor(Matrix6<S>::Zero()) {
     // Rank: a pivot below 100 ε · size of the largest is rounding, not a direction the contacts hold
@@ -106,6 +109,8 @@ struct ContactData {
           if (model.joints[b].nv > 0) top = model.joints[b].idx_v + model.joints[b].nv - 1;
       }
       for (int k = top; k >= 0; k = dof_parent[k]) contact_dofs[c].push_back(k);
+      if (model.floating_base)
+        for (int b = model.frames[contacts.contacts[c].frame].body; b > 1; b = model.parent[b]) contact_branch[c].emplace_back();
     }
   }
 };
