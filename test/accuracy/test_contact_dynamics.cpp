@@ -197,6 +197,41 @@ TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) {
   }
 }
 
+// Which solver each scene's λ goes through (contact_dynamics.hpp): the small Cholesky factors where the
+// contacts are independent, the complete orthogonal decomposition (minimum-norm λ) where they are
+// redundant or too few, so that the two tests above check both.
+TEST(ContactSolvers, RedundantOrTooFewContactsTakeTheDecomposition) {
+  struct Expected {
+    const char* scene;
+    bool id_gram, fd_cholesky;
+  };
+  const std::vector<Expected> expected = {{"talos two surface feet", true, true},
+                                          {"talos redundant", true, false},  // B: full row rank; K: singular
+                                          {"solo12 four point feet", true, true},
+                                          {"solo12 two diagonal feet", false, true},  // B: rank 5
+                                          {"floating double pendulum", false, true}};  // three rows
+  unsigned seed = 41;
+  for (const Scene& scene : scenes()) {
+    const sd::Model<double> model = floating_robot(scene.urdf);
+    const sd::ContactSet<double> contacts(model, scene.frames, scene.kinds);
+    sd::Data<double> data(model);
+    sd::ContactData<double> cd(model, contacts);
+    std::mt19937 rng(seed++);
+    const State x = random_state(model, rng);
+    sd::inverse_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.qdd);
+    Eigen::Matrix<double, 6, 6> L6 = Eigen::Matrix<double, 6, 6>::Zero();
+    const bool id_gram = contacts.rows >= 6 && sd::detail::gram_factor(cd.gram, L6, sd::detail::InertiaPattern{});
+    sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau);
+    MatrixXd L = MatrixXd::Zero(contacts.rows, contacts.rows);
+    const bool fd_cholesky = sd::detail::gram_factor(cd.K, L, sd::detail::ChainPattern{contacts.rows});
+    for (const Expected& e : expected) {
+      if (scene.name != e.scene) continue;
+      EXPECT_EQ(id_gram, e.id_gram) << scene.name;
+      EXPECT_EQ(fd_cholesky, e.fd_cholesky) << scene.name;
+    }
+  }
+}
+
 TEST(Centroidal, CenterOfMassJacobianAndMomentumMatrixMatchDifferences) {
   unsigned seed = 31;
   for (const char* file : {"talos.urdf", "solo12.urdf", "double_pendulum.urdf"}) {

@@ -33,6 +33,12 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::MomentumObserver<double> observer(model, Eigen::VectorXd::Constant(model.nv, 50.0));
     const sd::ContactSet<double> contacts(model, {model.frames[1].name, frame_name}, {"surface", "point"});
     sd::ContactData<double> contact_data(model, contacts);
+    // Sets that take the decompositions instead of the small Cholesky factors: three rows cannot
+    // balance a floating base; two surfaces hold more rows than a fixed arm has joints (K singular).
+    const sd::ContactSet<double> one_point(model, {frame_name}, {"point"});
+    sd::ContactData<double> one_point_data(model, one_point);
+    const sd::ContactSet<double> two_surfaces(model, {model.frames[1].name, frame_name}, {"surface", "surface"});
+    sd::ContactData<double> two_surfaces_data(model, two_surfaces);
 
     // The counter itself works: a direct call of operator new is counted (and cannot be elided).
     const long before_sanity = bench::allocation_count();
@@ -61,6 +67,10 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::contact_jacobian(model, data, contacts, contact_data, q, qd);
     sd::inverse_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd);
     sd::forward_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd);
+    sd::inverse_dynamics_with_contacts(model, data, one_point, one_point_data, q, qd, qdd);
+    sd::forward_dynamics_with_contacts(model, data, one_point, one_point_data, q, qd, qdd);
+    sd::inverse_dynamics_with_contacts(model, data, two_surfaces, two_surfaces_data, q, qd, qdd);
+    sd::forward_dynamics_with_contacts(model, data, two_surfaces, two_surfaces_data, q, qd, qdd);
     sd::center_of_mass(model, data, q);
     sd::center_of_mass_velocity(model, data, q, qd);
     sd::center_of_mass_jacobian(model, data, q);
