@@ -21,6 +21,9 @@
 
 #include "spatial_dynamics/algorithms/centroidal.hpp"
 #include "spatial_dynamics/algorithms/contact_dynamics.hpp"
+#include "spatial_dynamics/algorithms/crba.hpp"
+#include "spatial_dynamics/algorithms/rnea.hpp"
+#include "spatial_dynamics/reduction/couple_mimic_joints.hpp"
 #include "spatial_dynamics/reference/high_precision.hpp"
 #include "spatial_dynamics/reference/inverse_dynamics.hpp"
 #include "spatial_dynamics/reference/joint_model.hpp"
@@ -273,6 +276,39 @@ TEST(Centroidal, CenterOfMassJacobianAndMomentumMatrixMatchDifferences) {
     EXPECT_LT(worst_A, 1e-10) << file;
     EXPECT_LT(worst_cdot, 1e-10) << file;
   }
+}
+
+// Coupled joints (the Panda's second finger following the first) make M = Gᵀ M_free G, which the
+// sparse factor does not take: forward dynamics with contacts then factors M densely. Its answer must
+// satisfy the KKT system built from the library's own M, h and J_c (each checked against float128
+// elsewhere): M q̈ + h = τ + J_cᵀ λ and J_c q̈ + J̇_c q̇ = 0.
+TEST(ForwardDynamicsWithContacts, CoupledJointsSatisfyTheKktSystem) {
+  sd::ModelBuildOptions options;
+  options.floating_base = true;
+  const sd::Model<double> model =
+      sd::couple_mimic_joints(sd::build_model_from_urdf_file(sd_test::robot_path("panda.urdf"), options));
+  ASSERT_TRUE(model.has_coupled_joints);
+  const sd::ContactSet<double> contacts(model, {"panda_rightfinger"}, {"surface"});  // on the coupled finger
+  sd::Data<double> data(model), check(model);
+  sd::ContactData<double> cd(model, contacts), cd_check(model, contacts);
+  std::mt19937 rng(41);
+  double worst_dynamics = 0, worst_constraint = 0;
+  for (int s = 0; s < 3; ++s) {
+    const State x = random_state(model, rng);
+    const VectorXd qdd = sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau);
+    const VectorXd lambda = cd.lambda;
+    const MatrixXd M = sd::crba(model, check, x.q);
+    const VectorXd h = sd::nonlinear_effects(model, check, x.q, x.qd);
+    const MatrixXd J = sd::contact_jacobian(model, check, contacts, cd_check, x.q, x.qd);
+    worst_dynamics = std::max(worst_dynamics, (M * qdd + h - x.tau - J.transpose() * lambda).norm() /
+                                                  (x.tau.norm() + h.norm() + (J.transpose() * lambda).norm()));
+    worst_constraint = std::max(worst_constraint, (J * qdd + cd_check.acceleration).norm() /
+                                                      std::max(1.0, cd_check.acceleration.norm()));
+  }
+  std::printf("[panda, coupled fingers] M q̈ + h − τ − J_cᵀ λ: %.3g, J_c q̈ + J̇_c q̇: %.3g\n", worst_dynamics,
+              worst_constraint);
+  EXPECT_LT(worst_dynamics, 1e-12);
+  EXPECT_LT(worst_constraint, 1e-10);
 }
 
 TEST(Contacts, BadInputIsNamed) {
