@@ -47,6 +47,27 @@ struct Base {
   Eigen::Vector3d position{0.1, -0.2, 0.9};
   Eigen::Quaterniond orientation{Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, -0.1, 1.0).normalized())};
   Eigen::Matrix<double, 6, 1> twist = (Eigen::Matrix<double, 6, 1>() << 0.1, -0.2, 0.05, 0.3, 0.1, -0.2).finished();
+
+  /// The pose into a message's position (Point or Vector3) and orientation.
+  template <class Position>
+  void pose(Position& p, geometry_msgs::Quaternion& o) const {
+    p.x = position.x();
+    p.y = position.y();
+    p.z = position.z();
+    o.x = orientation.x();
+    o.y = orientation.y();
+    o.z = orientation.z();
+    o.w = orientation.w();
+  }
+  /// The twist into a message.
+  void velocity(geometry_msgs::Twist& t) const {
+    t.angular.x = twist[0];
+    t.angular.y = twist[1];
+    t.angular.z = twist[2];
+    t.linear.x = twist[3];
+    t.linear.y = twist[4];
+    t.linear.z = twist[5];
+  }
 };
 
 class FloatingBase : public ServedNodeTest {
@@ -75,32 +96,15 @@ class FloatingBase : public ServedNodeTest {
       odom.header.stamp = now;
       odom.header.frame_id = "odom";
       odom.child_frame_id = root_link_;
-      odom.pose.pose.position.x = base.position.x();
-      odom.pose.pose.position.y = base.position.y();
-      odom.pose.pose.position.z = base.position.z();
-      odom.pose.pose.orientation.x = base.orientation.x();
-      odom.pose.pose.orientation.y = base.orientation.y();
-      odom.pose.pose.orientation.z = base.orientation.z();
-      odom.pose.pose.orientation.w = base.orientation.w();
-      odom.twist.twist.angular.x = base.twist[0];
-      odom.twist.twist.angular.y = base.twist[1];
-      odom.twist.twist.angular.z = base.twist[2];
-      odom.twist.twist.linear.x = base.twist[3];
-      odom.twist.twist.linear.y = base.twist[4];
-      odom.twist.twist.linear.z = base.twist[5];
+      base.pose(odom.pose.pose.position, odom.pose.pose.orientation);
+      base.velocity(odom.twist.twist);
       odometry_publisher_.publish(odom);
     } else {
       geometry_msgs::TransformStamped t;
       t.header.stamp = now;
       t.header.frame_id = "odom";
       t.child_frame_id = root_link_;
-      t.transform.translation.x = base.position.x();
-      t.transform.translation.y = base.position.y();
-      t.transform.translation.z = base.position.z();
-      t.transform.rotation.x = base.orientation.x();
-      t.transform.rotation.y = base.orientation.y();
-      t.transform.rotation.z = base.orientation.z();
-      t.transform.rotation.w = base.orientation.w();
+      base.pose(t.transform.translation, t.transform.rotation);
       broadcaster_->sendTransform(t);
     }
   }
@@ -170,19 +174,8 @@ class FloatingBase : public ServedNodeTest {
   template <class Request>
   void setBase(Request& r) const {
     const Base base;
-    r.base_pose.position.x = base.position.x();
-    r.base_pose.position.y = base.position.y();
-    r.base_pose.position.z = base.position.z();
-    r.base_pose.orientation.x = base.orientation.x();
-    r.base_pose.orientation.y = base.orientation.y();
-    r.base_pose.orientation.z = base.orientation.z();
-    r.base_pose.orientation.w = base.orientation.w();
-    r.base_twist.angular.x = base.twist[0];
-    r.base_twist.angular.y = base.twist[1];
-    r.base_twist.angular.z = base.twist[2];
-    r.base_twist.linear.x = base.twist[3];
-    r.base_twist.linear.y = base.twist[4];
-    r.base_twist.linear.z = base.twist[5];
+    base.pose(r.base_pose.position, r.base_pose.orientation);
+    base.velocity(r.base_twist);
   }
 
   /// The independent contact-consistent ID: λ = pinv(J_c,baseᵀ) ID_base, τ = ID − J_cᵀ λ.
