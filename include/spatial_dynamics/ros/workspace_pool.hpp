@@ -27,14 +27,22 @@ struct Workspace {
   Eigen::VectorXd q, qd, x;
   Eigen::VectorXd joint_values;                     // one request array, before it goes into q, q̇ or x
   ContactSet<double> request_contacts;              // a request's own contacts (contact_frames)
-  std::unique_ptr<ContactData<double>> contact_data;  // sized for the last contact set used
+  std::unique_ptr<ContactData<double>> contact_data;  // for contact_data_set (its frames and kinds)
+  ContactSet<double> contact_data_set;
   std::vector<ForceVector<double>> f_ext;
   Eigen::MatrixXd trajectory_q, trajectory_qd, trajectory_qdd, trajectory_tau;  // one column per point
 
-  /// The contact work space for `contacts` on `model`: reallocated only when the set's size changes.
+  /// The contact work space for `contacts` on `model` (ContactData is laid out for its set's frames
+  /// and kinds): reallocated only when they change.
   ContactData<double>& contactData(const Model<double>& model, const ContactSet<double>& contacts) {
-    if (!contact_data || contact_data->J.rows() != contacts.rows || contact_data->J.cols() != model.nv)
+    bool same = contact_data && contact_data->J.cols() == model.nv && contact_data_set.size() == contacts.size();
+    for (std::size_t k = 0; same && k < contacts.size(); ++k)
+      same = contact_data_set.contacts[k].frame == contacts.contacts[k].frame &&
+             contact_data_set.contacts[k].kind == contacts.contacts[k].kind;
+    if (!same) {
       contact_data = std::make_unique<ContactData<double>>(model, contacts);
+      contact_data_set = contacts;
+    }
     return *contact_data;
   }
 };
