@@ -9,7 +9,8 @@
 //    with the contacts at rest (q̇ projected onto J_c q̇ = 0, so that redundant constraints agree);
 //  - the centre of mass from the body poses, J_com and A_G from central differences of the body poses;
 // on talos (two surface feet; and a redundant set), solo12 (four point feet; two diagonal ones), a
-// floating double pendulum (one point), random states.
+// floating double pendulum (one point), random states; ID and FD also with random external forces on
+// every body (the reference's ID(q, q̇, q̈, f_ext)).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -77,7 +78,18 @@ sd::Model<double> floating_robot(const std::string& file) {
 struct State {
   VectorXd q, qd, qdd, tau;
   VecQ Q, Qd, Qdd, Tau;
+  std::vector<sd::ForceVector<double>> f_ext;  // on every body but the base (empty: none)
+  std::vector<sd::ForceVector<Quad>> F_ext;
 };
+
+/// Random external forces on every body, ‖f‖ ~ 20 N and N m (body coordinates), into x.f_ext and x.F_ext.
+void add_external_forces(const sd::Model<double>& model, std::mt19937& rng, State& x) {
+  x.f_ext.assign(model.nbodies(), sd::ForceVector<double>::Zero());
+  for (int i = 1; i < model.nbodies(); ++i)
+    x.f_ext[i] = sd::ForceVector<double>(sd::Vector6<double>(sd_test::random_vector(6, rng, 20.0)));
+  x.F_ext.resize(x.f_ext.size());
+  for (std::size_t i = 0; i < x.f_ext.size(); ++i) x.F_ext[i] = x.f_ext[i].cast<Quad>();
+}
 
 State random_state(const sd::Model<double>& model, std::mt19937& rng) {
   State s;
@@ -123,8 +135,10 @@ TEST(ContactJacobian, MatchesDifferencesOfTheFramePoses) {
   }
 }
 
-TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) {
-  unsigned seed = 11;
+/// Inverse dynamics with contacts (and with random external forces on every body) against the
+/// reference's ID(q, q̇, q̈, f_ext), λ by a dense pseudo-inverse of the base rows.
+static void check_inverse_dynamics_with_contacts(bool with_external_forces) {
+  unsigned seed = with_external_forces ? 51 : 11;
   for (const Scene& scene : scenes()) {
     const sd::Model<double> model = floating_robot(scene.urdf);
     const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
@@ -134,14 +148,18 @@ TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) 
     std::mt19937 rng(seed++);
     double worst_tau = 0, worst_lambda = 0, worst_base = 0, worst_violation = 0;
     for (int s = 0; s < 3; ++s) {
-      const State x = random_state(model, rng);
+      State x = random_state(model, rng);
+      if (with_external_forces) add_external_forces(model, rng, x);
       MatQ J;
       VecQ Jdot_qd;
       contact_jacobian_by_differences(oracle, contacts, x.Q, x.Qd, J, Jdot_qd);
-      const VecQ id = ref::inverse_dynamics(oracle, x.Q, x.Qd, x.Qdd);
+      const VecQ id = ref::inverse_dynamics(oracle, x.Q, x.Qd, x.Qdd, x.F_ext);
       const VecQ lambda = pseudo_inverse_solve(J.leftCols(6).transpose(), id.head(6));
       const VecQ tau = id - J.transpose() * lambda;
-      sd::inverse_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.qdd);
+      if (with_external_forces)
+        sd::inverse_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.qdd, x.f_ext);
+      else
+        sd::inverse_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.qdd);
       worst_tau = std::max(worst_tau, sd::relative_error_to(cd.tau.tail(model.nv - 6), VecQ(tau.tail(model.nv - 6))));
       worst_lambda = std::max(worst_lambda, sd::relative_error_to(cd.lambda, lambda));
       // The base rows: the wrench left over, relative to the base's part of ID.
@@ -150,7 +168,8 @@ TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) 
       const VecQ violation = J * x.Qdd + Jdot_qd;
       worst_violation = std::max(worst_violation, sd::relative_error_to(cd.acceleration, violation));
     }
-    std::printf("[%s] τ: %.3g, λ: %.3g, base rows: %.3g, J_c q̈ + J̇_c q̇: %.3g\n", scene.name.c_str(), worst_tau,
+    std::printf("[%s%s] τ: %.3g, λ: %.3g, base rows: %.3g, J_c q̈ + J̇_c q̇: %.3g\n", scene.name.c_str(),
+                with_external_forces ? ", external forces" : "", worst_tau,
                 worst_lambda, worst_base, worst_violation);
     EXPECT_LT(worst_tau, 1e-12) << scene.name;
     EXPECT_LT(worst_lambda, 1e-12) << scene.name;
@@ -159,8 +178,14 @@ TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) 
   }
 }
 
-TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) {
-  unsigned seed = 21;
+TEST(InverseDynamicsWithContacts, MatchesTheReferenceAndTheMinimumNormWrenches) { check_inverse_dynamics_with_contacts(false); }
+
+TEST(InverseDynamicsWithContacts, WithExternalForcesMatchesTheReference) { check_inverse_dynamics_with_contacts(true); }
+
+/// Forward dynamics with contacts (and with random external forces on every body) against the dense
+/// KKT system of the reference's M and ID(q, q̇, 0, f_ext).
+static void check_forward_dynamics_with_contacts(bool with_external_forces) {
+  unsigned seed = with_external_forces ? 61 : 21;
   for (const Scene& scene : scenes()) {
     const sd::Model<double> model = floating_robot(scene.urdf);
     const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
@@ -171,6 +196,7 @@ TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) {
     double worst_qdd = 0, worst_lambda = 0, worst_violation = 0;
     for (int s = 0; s < 3; ++s) {
       State x = random_state(model, rng);
+      if (with_external_forces) add_external_forces(model, rng, x);
       // Contacts at rest (J_c q̇ = 0): redundant contacts' constraints are then consistent.
       // (with Data of its own: forward_dynamics_with_contacts must not rely on poses another call left)
       sd::Data<double> projection(model);
@@ -186,19 +212,27 @@ TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) {
       kkt.topRightCorner(n, m) = -J.transpose();
       kkt.bottomLeftCorner(m, n) = J;
       VecQ rhs(n + m);
-      rhs << x.Tau - ref::nonlinear_effects(oracle, x.Q, x.Qd), -Jdot_qd;
+      rhs << x.Tau - ref::inverse_dynamics(oracle, x.Q, x.Qd, VecQ(VecQ::Zero(n)), x.F_ext), -Jdot_qd;
       const VecQ solution = pseudo_inverse_solve(kkt, rhs);  // (q̈ ; λ), λ of minimum norm
-      sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau);
+      if (with_external_forces)
+        sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau, x.f_ext);
+      else
+        sd::forward_dynamics_with_contacts(model, data, contacts, cd, x.q, x.qd, x.tau);
       worst_qdd = std::max(worst_qdd, sd::relative_error_to(cd.qdd, VecQ(solution.head(n))));
       worst_lambda = std::max(worst_lambda, sd::relative_error_to(cd.lambda, VecQ(solution.tail(m))));
       worst_violation = std::max(worst_violation, cd.acceleration.norm() / std::max(1.0, static_cast<double>(Jdot_qd.norm())));
     }
-    std::printf("[%s] q̈: %.3g, λ: %.3g, ‖J_c q̈ + J̇_c q̇‖: %.3g\n", scene.name.c_str(), worst_qdd, worst_lambda, worst_violation);
+    std::printf("[%s%s] q̈: %.3g, λ: %.3g, ‖J_c q̈ + J̇_c q̇‖: %.3g\n", scene.name.c_str(),
+                with_external_forces ? ", external forces" : "", worst_qdd, worst_lambda, worst_violation);
     EXPECT_LT(worst_qdd, 1e-12) << scene.name;
     EXPECT_LT(worst_lambda, 1e-12) << scene.name;
     EXPECT_LT(worst_violation, 1e-10) << scene.name;
   }
 }
+
+TEST(ForwardDynamicsWithContacts, MatchesTheDenseKktSolution) { check_forward_dynamics_with_contacts(false); }
+
+TEST(ForwardDynamicsWithContacts, WithExternalForcesMatchesTheDenseKktSolution) { check_forward_dynamics_with_contacts(true); }
 
 // Which solver each scene's λ goes through (contact_dynamics.hpp): the small Cholesky factors where the
 // contacts are independent, the complete orthogonal decomposition (minimum-norm λ) where they are
@@ -242,7 +276,6 @@ TEST(Centroidal, CenterOfMassJacobianAndMomentumMatrixMatchDifferences) {
     const sd::Model<Quad> oracle = sd_test::with_exact_rotations(model);
     sd::Data<double> data(model);
     std::mt19937 rng(seed++);
-    const Quad mass = sd_test::total_mass(oracle);
     auto com = [&](const std::vector<Mat6Q>& X0) { return sd_test::center_of_mass(oracle, X0); };
     double worst_c = 0, worst_J = 0, worst_A = 0, worst_cdot = 0;
     const Quad h(kStep);

@@ -71,6 +71,8 @@ TEST_P(NoAllocation, AlgorithmCallsDoNotAllocate) {
     sd::forward_dynamics_with_contacts(model, data, one_point, one_point_data, q, qd, qdd);
     sd::inverse_dynamics_with_contacts(model, data, two_surfaces, two_surfaces_data, q, qd, qdd);
     sd::forward_dynamics_with_contacts(model, data, two_surfaces, two_surfaces_data, q, qd, qdd);
+    sd::inverse_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd, f_ext);
+    sd::forward_dynamics_with_contacts(model, data, contacts, contact_data, q, qd, qdd, f_ext);
     sd::center_of_mass(model, data, q);
     sd::center_of_mass_velocity(model, data, q, qd);
     sd::center_of_mass_jacobian(model, data, q);

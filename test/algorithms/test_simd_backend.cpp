@@ -74,7 +74,7 @@ TEST_P(BackendsAgree, OnRandomStates) {
   const int frame = static_cast<int>(model.frames.size()) - 1;
   const sd::ContactSet<double> contacts(model, {model.frames[frame].name}, {"point"});  // the last link's origin held
   sd::ContactData<double> contacts_here(model, contacts), contacts_portable(model, contacts), contacts_avx2(model, contacts);
-  std::mt19937 rng(7);
+  std::mt19937 rng(7), force_rng(8);
   double worst = 0;  // largest relative difference between the two builds
   const auto compare = [&](const auto& from_here, const auto& from_portable, const auto& from_avx2, const char* what) {
     EXPECT_TRUE(from_portable == from_here) << what << ": the portable build differs from the templates";
@@ -126,6 +126,13 @@ TEST_P(BackendsAgree, OnRandomStates) {
             "inverse_dynamics_with_contacts");
     compare(VectorXd(contacts_here.lambda), VectorXd(contacts_portable.lambda), VectorXd(contacts_avx2.lambda),
             "inverse_dynamics_with_contacts: λ");
+    std::vector<sd::ForceVector<double>> f_ext(model.nbodies(), sd::ForceVector<double>::Zero());
+    for (int i = 1; i < model.nbodies(); ++i)  // (their own generator: the states stay those of rng)
+      f_ext[i] = sd::ForceVector<double>(sd::Vector6<double>(sd_test::random_vector(6, force_rng)));
+    compare(VectorXd(sd::inverse_dynamics_with_contacts<double>(model, here, contacts, contacts_here, q, qd, qdd, f_ext)),
+            VectorXd(portable.inverse_dynamics_with_contacts_f_ext(model, data_portable, contacts, contacts_portable, q, qd, qdd, f_ext)),
+            VectorXd(avx2.inverse_dynamics_with_contacts_f_ext(model, data_avx2, contacts, contacts_avx2, q, qd, qdd, f_ext)),
+            "inverse_dynamics_with_contacts with f_ext");
     // (q̈ ; λ) together: the contact can hold every joint (the double pendulum's), and q̈ is then zero but for rounding.
     const auto constrained = [&](const sd::ContactData<double>& cd) {
       VectorXd x(cd.qdd.size() + cd.lambda.size());
@@ -137,6 +144,11 @@ TEST_P(BackendsAgree, OnRandomStates) {
     avx2.forward_dynamics_with_contacts(model, data_avx2, contacts, contacts_avx2, q, qd, tau);
     compare(constrained(contacts_here), constrained(contacts_portable), constrained(contacts_avx2),
             "forward_dynamics_with_contacts");
+    sd::forward_dynamics_with_contacts<double>(model, here, contacts, contacts_here, q, qd, tau, f_ext);
+    portable.forward_dynamics_with_contacts_f_ext(model, data_portable, contacts, contacts_portable, q, qd, tau, f_ext);
+    avx2.forward_dynamics_with_contacts_f_ext(model, data_avx2, contacts, contacts_avx2, q, qd, tau, f_ext);
+    compare(constrained(contacts_here), constrained(contacts_portable), constrained(contacts_avx2),
+            "forward_dynamics_with_contacts with f_ext");
     compare(MatrixXd(sd::contact_jacobian<double>(model, here, contacts, contacts_here, q, qd)),
             MatrixXd(portable.contact_jacobian(model, data_portable, contacts, contacts_portable, q, qd)),
             MatrixXd(avx2.contact_jacobian(model, data_avx2, contacts, contacts_avx2, q, qd)), "contact_jacobian");

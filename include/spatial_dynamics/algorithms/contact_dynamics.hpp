@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "spatial_dynamics/algorithms/crba.hpp"
 #include "spatial_dynamics/algorithms/input_checks.hpp"
@@ -241,17 +242,15 @@ const MatrixX<S>& contact_jacobian(const Model<S>& model, Data<S>& data, const C
   return cd.J;
 }
 
-/// τ and λ with ID(q, q̇, q̈) = τ + J_cᵀ λ (cd.tau, cd.lambda): for a floating base, λ is the
-/// minimum-norm least-squares solution of the base's six rows J_c,baseᵀ λ = ID_base, and cd.tau's
-/// base rows hold the wrench the contacts leave on the base (root body axes, about its origin: zero
-/// when they balance it); for a fixed base λ = 0. cd.acceleration: J_c q̈ + J̇_c q̇, how far the motion
-/// breaks the contacts. cd.J is not computed; cd.base_rows (J_c,baseᵀ) only when the contacts cannot
-/// balance the base (fewer than six rows, or rank deficient).
+namespace detail {
+
+/// inverse_dynamics_with_contacts below, with external forces f_ext[i] on body i (or none: nullptr).
 template <class S>
-const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
-                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
-                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
-  cd.tau = detail::rnea_impl(model, data, q, qd, qdd, static_cast<const ForceVector<S>*>(nullptr));
+const VectorX<S>& inverse_dynamics_with_contacts_impl(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                      ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                      const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
+                                                      const ForceVector<S>* f_ext) {
+  cd.tau = rnea_impl(model, data, q, qd, qdd, f_ext);
   const bool balance = model.floating_base && contacts.rows > 0;
   const int root = balance ? 1 : -1;  // the floating root body (a free joint: S = 1)
   const MotionVector<S> a_0 = detail::gravity_base_acceleration(model);
@@ -302,16 +301,14 @@ const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>&
   return cd.tau;
 }
 
-/// q̈ and λ (cd.qdd, cd.lambda) of M q̈ + h = τ + J_cᵀ λ with J_c q̈ + J̇_c q̇ = 0; cd.acceleration
-/// then holds J_c q̈ + J̇_c q̇ (zero up to rounding). With M = Lᵀ L (cd.L) and z = L⁻ᵀ (τ − h):
-/// Y = L⁻ᵀ J_cᵀ (cd.L_inv_Jt), K = Yᵀ Y, K λ = −J̇_c q̇ − Yᵀ z, q̈ = L⁻¹ (z + Y λ). A mass matrix that
-/// is not positive definite (a massless floating root) throws std::domain_error.
+/// forward_dynamics_with_contacts below, with external forces f_ext[i] on body i (or none: nullptr).
 template <class S>
-const VectorX<S>& forward_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
-                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
-                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
+const VectorX<S>& forward_dynamics_with_contacts_impl(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                      ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                      const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
+                                                      const ForceVector<S>* f_ext) {
   detail::check_length("effort", tau.size(), model.nv);
-  detail::rnea_impl(model, data, q, qd, data.zero_v, static_cast<const ForceVector<S>*>(nullptr));  // h; J̇_c q̇'s v, a
+  detail::rnea_impl(model, data, q, qd, data.zero_v, f_ext);  // h − Σ J_iᵀ f_ext,i; J̇_c q̇'s v, a
   const detail::TreePattern<S> tree{cd};
   if (!detail::ltl_factor(crba<S>(model, data, q), cd.L, tree, S(0)))  // crba: also X_base and S̃ for J_c
     throw std::domain_error("the mass matrix is not positive definite (a massless subtree?): forward dynamics is undefined");
@@ -352,6 +349,56 @@ const VectorX<S>& forward_dynamics_with_contacts(const Model<S>& model, Data<S>&
   if (contacts.rows > 0) cd.acceleration.noalias() += cd.J * cd.qdd;  // J̇_c q̇ + J_c q̈
   detail::check_finite_result(model, "forward dynamics with contacts: the acceleration", cd.qdd);
   return cd.qdd;
+}
+
+}  // namespace detail
+
+/// τ and λ with ID(q, q̇, q̈) = τ + J_cᵀ λ (cd.tau, cd.lambda): for a floating base, λ is the
+/// minimum-norm least-squares solution of the base's six rows J_c,baseᵀ λ = ID_base, and cd.tau's
+/// base rows hold the wrench the contacts leave on the base (root body axes, about its origin: zero
+/// when they balance it); for a fixed base λ = 0. cd.acceleration: J_c q̈ + J̇_c q̇, how far the motion
+/// breaks the contacts. cd.J is not computed; cd.base_rows (J_c,baseᵀ) only when the contacts cannot
+/// balance the base (fewer than six rows, or rank deficient).
+template <class S>
+const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd) {
+  return detail::inverse_dynamics_with_contacts_impl(model, data, contacts, cd, q, qd, qdd,
+                                                     static_cast<const ForceVector<S>*>(nullptr));
+}
+
+/// As above with external forces f_ext[i] on body i (body coordinates; entry 0 unused), as rnea takes
+/// them: ID(q, q̇, q̈, f_ext) = τ + J_cᵀ λ, so the contacts balance what the external forces leave.
+template <class S>
+const VectorX<S>& inverse_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& qdd,
+                                                 const std::vector<ForceVector<S>>& f_ext) {
+  detail::check_external_forces(model, f_ext);
+  return detail::inverse_dynamics_with_contacts_impl(model, data, contacts, cd, q, qd, qdd, f_ext.data());
+}
+
+/// q̈ and λ (cd.qdd, cd.lambda) of M q̈ + h = τ + J_cᵀ λ with J_c q̈ + J̇_c q̇ = 0; cd.acceleration
+/// then holds J_c q̈ + J̇_c q̇ (zero up to rounding). With M = Lᵀ L (cd.L) and z = L⁻ᵀ (τ − h):
+/// Y = L⁻ᵀ J_cᵀ (cd.L_inv_Jt), K = Yᵀ Y, K λ = −J̇_c q̇ − Yᵀ z, q̈ = L⁻¹ (z + Y λ). A mass matrix that
+/// is not positive definite (a massless floating root) throws std::domain_error.
+template <class S>
+const VectorX<S>& forward_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau) {
+  return detail::forward_dynamics_with_contacts_impl(model, data, contacts, cd, q, qd, tau,
+                                                     static_cast<const ForceVector<S>*>(nullptr));
+}
+
+/// As above with external forces f_ext[i] on body i (body coordinates; entry 0 unused):
+/// M q̈ + h = τ + Σ J_iᵀ f_ext,i + J_cᵀ λ.
+template <class S>
+const VectorX<S>& forward_dynamics_with_contacts(const Model<S>& model, Data<S>& data, const ContactSet<S>& contacts,
+                                                 ContactData<S>& cd, const ConstVectorRef<S>& q,
+                                                 const ConstVectorRef<S>& qd, const ConstVectorRef<S>& tau,
+                                                 const std::vector<ForceVector<S>>& f_ext) {
+  detail::check_external_forces(model, f_ext);
+  return detail::forward_dynamics_with_contacts_impl(model, data, contacts, cd, q, qd, tau, f_ext.data());
 }
 
 }  // namespace spatial_dynamics
