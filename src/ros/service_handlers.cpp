@@ -96,17 +96,12 @@ void check_root_mass(const Model<double>& model) {
                              "' has no mass: a floating base (~root_joint floating) needs one for forward dynamics");
 }
 
-/// The contacts of a request (contact_answers.hpp); contacts and external wrenches in one call are
-/// not served (the contact functions take none).
+/// The contacts of a request (contact_answers.hpp).
 template <class Request>
 const ContactSet<double>& request_contacts(const ServedScene& scene, Workspace& ws, const Model<double>& model,
-                                           const Request& req, bool with_wrenches) {
-  const ContactSet<double>& contacts = contacts_for_call(scene, ws, model, req.contact_frames, req.contact_kinds,
-                                                         req.contact_frictions, req.ignore_contacts);
-  if (with_wrenches && !contacts.empty())
-    throw std::runtime_error("external_wrenches with contacts are not served: set ignore_contacts or leave out "
-                             "external_wrenches");
-  return contacts;
+                                           const Request& req) {
+  return contacts_for_call(scene, ws, model, req.contact_frames, req.contact_kinds, req.contact_frictions,
+                           req.ignore_contacts);
 }
 
 /// ws.q and ws.qd of the latest joint states and, for a floating base, its state at `stamp` (its
@@ -197,11 +192,14 @@ void compute_inverse_dynamics(const ServedScene& scene, const BaseStateSource& b
     refuse_base_fields({}, {}, &req.base_acceleration);
   Data<double>& data = ws.data;
   const bool actuated = with_actuators(scene, req.rigid_body_only);
-  const ContactSet<double>& contacts = request_contacts(scene, ws, model, req, with_wrenches);
+  const ContactSet<double>& contacts = request_contacts(scene, ws, model, req);
   const Eigen::VectorXd* tau = nullptr;
   if (!contacts.empty()) {
     ContactData<double>& cd = ws.contactData(model, contacts);
-    inverse_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x);
+    if (with_wrenches)
+      inverse_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x, ws.f_ext);
+    else
+      inverse_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x);
     if (actuated) cd.tau += actuator_forces(model, data, ws.qd);  // damping and friction (armature is in M)
     tau = &cd.tau;
     answer_contacts(model, contacts, cd, res);
@@ -231,12 +229,13 @@ void compute_forward_dynamics(const ServedScene& scene, const BaseStateSource& b
   check_root_mass(model);
   Data<double>& data = ws.data;
   const bool actuated = with_actuators(scene, req.rigid_body_only);
-  const ContactSet<double>& contacts = request_contacts(scene, ws, model, req, with_wrenches);
+  const ContactSet<double>& contacts = request_contacts(scene, ws, model, req);
   const Eigen::VectorXd* qdd = nullptr;
   if (!contacts.empty()) {
     ContactData<double>& cd = ws.contactData(model, contacts);
     if (actuated) ws.x -= actuator_forces(model, data, ws.qd);  // τ − τ_a(q̇) for the rigid body and rotors
-    qdd = &forward_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x);
+    qdd = &(with_wrenches ? forward_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x, ws.f_ext)
+                          : forward_dynamics_with_contacts(model, data, contacts, cd, ws.q, ws.qd, ws.x));
     answer_contacts(model, contacts, cd, res);
   } else {
     qdd = &(actuated ? (with_wrenches ? forward_dynamics_actuated(model, data, ws.q, ws.qd, ws.x, ws.f_ext)
@@ -271,7 +270,7 @@ void compute_mass_matrix(const ServedScene& scene, const BaseStateSource&, Works
   } else {
     refuse_base_fields(req.base_pose, req.base_twist, &req.base_acceleration);
   }
-  request_contacts(scene, ws, model, req, false);  // checked: M does not depend on them
+  request_contacts(scene, ws, model, req);  // checked: M does not depend on them
   const Eigen::MatrixXd& M = crba(model, ws.data, ws.q);  // with armature
   check_finite(M, "mass matrix");
   res.name.clear();

@@ -1,7 +1,8 @@
 // Integration test of a floating base (~root_joint floating) with contacts, the base's state from
 // odometry (~base_odometry) or from tf (~world_frame), by name through the node: every service with
 // and without contacts, ~computed_torques with ~computed_contact_wrenches, ~centroidal_state,
-// ~set_contacts, a scene (the legs) and a payload on the base, and each bad input named. The expected numbers are an independent float128
+// ~set_contacts, an external wrench with the contacts, a scene (the legs) and a payload on the base,
+// and each bad input named. The expected numbers are an independent float128
 // solution (contact_oracle.hpp: the reference's ID, M and h, J_c by differences of frame poses,
 // dense pseudo-inverses). Launched by node_floating_base.test with ~robot (talos: two surface
 // soles; solo12: four point feet) and ~base_source (odometry | tf).
@@ -178,16 +179,59 @@ class FloatingBase : public ServedNodeTest {
     base.velocity(r.base_twist);
   }
 
-  /// The independent contact-consistent ID: λ = pinv(J_c,baseᵀ) ID_base, τ = ID − J_cᵀ λ.
+  /// The independent contact-consistent ID: λ = pinv(J_c,baseᵀ) ID_base, τ = ID − J_cᵀ λ, with
+  /// ID = ID(q, q̇, q̈, F_ext) (F_ext: none when empty).
   void independentId(const std::vector<std::string>& contact_frames, const std::vector<std::string>& contact_kinds,
-                     const VecQ& Q, const VecQ& Qd, const VecQ& Qdd, VecQ& id, VecQ& lambda, VecQ& tau) const {
+                     const VecQ& Q, const VecQ& Qd, const VecQ& Qdd, VecQ& id, VecQ& lambda, VecQ& tau,
+                     const std::vector<sd::ForceVector<Quad>>& F_ext = {}) const {
     const sd::ContactSet<double> contacts(model, contact_frames, contact_kinds);
     MatQ J;
     VecQ Jdot_qd;
     sd_test::contact_jacobian_by_differences(oracle, contacts, Q, Qd, J, Jdot_qd);
-    id = ref::inverse_dynamics(oracle, Q, Qd, Qdd);
+    id = ref::inverse_dynamics(oracle, Q, Qd, Qdd, F_ext);
     lambda = sd_test::pseudo_inverse_solve(J.leftCols(6).transpose(), id.head(6));
     tau = id - J.transpose() * lambda;
+  }
+
+  /// A ForwardDynamics request of every joint with the test's base pose and twist.
+  sd::ForwardDynamics fdRequest(const VectorXd& q, const VectorXd& qd, const VectorXd& effort) const {
+    sd::ForwardDynamics fd;
+    fd.request.name = names;
+    fd.request.position = to_std(q);
+    fd.request.velocity = to_std(qd);
+    fd.request.effort = to_std(effort);
+    setBase(fd.request);
+    return fd;
+  }
+
+  /// The independent constrained FD with the node's contacts: (q̈ ; λ) of the dense KKT system
+  /// [M −J_cᵀ; J_c 0] (q̈ ; λ) = (τ − ID(q, q̇, 0, F_ext) ; −J̇_c q̇) by its pseudo-inverse; M into `M`.
+  VecQ independentFd(const VecQ& Q, const VecQ& Qd, const VectorXd& effort, MatQ& M,
+                     const std::vector<sd::ForceVector<Quad>>& F_ext = {}) const {
+    const int n = model.nv;
+    const sd::ContactSet<double> contacts(model, frames, kinds);
+    MatQ J;
+    VecQ Jdot_qd;
+    sd_test::contact_jacobian_by_differences(oracle, contacts, Q, Qd, J, Jdot_qd);
+    M = ref::mass_matrix(oracle, Q);
+    VectorXd tau_full = VectorXd::Zero(n);
+    tau_full.tail(n - 6) = effort;
+    const int m = contacts.rows;
+    MatQ kkt = MatQ::Zero(n + m, n + m);
+    kkt.topLeftCorner(n, n) = M;
+    kkt.topRightCorner(n, m) = -J.transpose();
+    kkt.bottomLeftCorner(m, n) = J;
+    VecQ rhs(n + m);
+    rhs << sd::to_quad(tau_full) - ref::inverse_dynamics(oracle, Q, Qd, VecQ(VecQ::Zero(n)), F_ext), -Jdot_qd;
+    return sd_test::pseudo_inverse_solve(kkt, rhs);
+  }
+
+  /// A ForwardDynamics answer's q̈: base_acceleration, then the joints'.
+  static VectorXd accelerations(const sd::ForwardDynamics& fd) {
+    const geometry_msgs::Accel& a = fd.response.base_acceleration;
+    VectorXd qdd(6 + fd.response.acceleration.size());
+    qdd << a.angular.x, a.angular.y, a.angular.z, a.linear.x, a.linear.y, a.linear.z, to_eigen(fd.response.acceleration);
+    return qdd;
   }
 
   /// The stacked λ of an answer's contact wrenches (point: force; surface: moment, force).
@@ -380,43 +424,21 @@ TEST_F(FloatingBase, ServicesWithAndWithoutContactsMatchTheIndependentSolution) 
 
     // Forward dynamics: the dense KKT system with the contacts, M⁻¹(τ − h) without.
     const VectorXd effort = sd_test::random_vector(joints, rng, 5.0);
-    sd::ForwardDynamics fd;
-    fd.request.name = names;
-    fd.request.position = to_std(q);
-    fd.request.velocity = to_std(qd);
-    fd.request.effort = to_std(effort);
-    setBase(fd.request);
-    const sd::ContactSet<double> contacts(model, frames, kinds);
-    MatQ J;
-    VecQ Jdot_qd;
-    sd_test::contact_jacobian_by_differences(oracle, contacts, Q, Qd, J, Jdot_qd);
-    const MatQ M = ref::mass_matrix(oracle, Q);
-    VectorXd tau_full = VectorXd::Zero(n);
-    tau_full.tail(joints) = effort;
-    const VecQ rhs_free = sd::to_quad(tau_full) - ref::nonlinear_effects(oracle, Q, Qd);
-    const int m = contacts.rows;
-    MatQ kkt = MatQ::Zero(n + m, n + m);
-    kkt.topLeftCorner(n, n) = M;
-    kkt.topRightCorner(n, m) = -J.transpose();
-    kkt.bottomLeftCorner(m, n) = J;
-    VecQ rhs(n + m);
-    rhs << rhs_free, -Jdot_qd;
-    const VecQ solution = sd_test::pseudo_inverse_solve(kkt, rhs);
+    sd::ForwardDynamics fd = fdRequest(q, qd, effort);
+    MatQ M;
+    const VecQ solution = independentFd(Q, Qd, effort, M);
     const sd::ForwardDynamics fd_with = call("forward_dynamics", fd);
     ASSERT_TRUE(fd_with.response.success) << fd_with.response.message;
-    const auto& ba = fd_with.response.base_acceleration;
-    VectorXd qdd_node(n);
-    qdd_node << ba.angular.x, ba.angular.y, ba.angular.z, ba.linear.x, ba.linear.y, ba.linear.z,
-        to_eigen(fd_with.response.acceleration);
-    EXPECT_LT(sd::relative_error_to(qdd_node, VecQ(solution.head(n))), kTolerance);
-    EXPECT_LT(sd::relative_error_to(stacked(fd_with.response.contact_wrenches, kinds), VecQ(solution.tail(m))), kTolerance);
+    EXPECT_LT(sd::relative_error_to(accelerations(fd_with), VecQ(solution.head(n))), kTolerance);
+    EXPECT_LT(sd::relative_error_to(stacked(fd_with.response.contact_wrenches, kinds), VecQ(solution.tail(solution.size() - n))),
+              kTolerance);
     fd.request.ignore_contacts = true;
     const sd::ForwardDynamics fd_without = call("forward_dynamics", fd);
     ASSERT_TRUE(fd_without.response.success) << fd_without.response.message;
-    const auto& fa = fd_without.response.base_acceleration;
-    qdd_node << fa.angular.x, fa.angular.y, fa.angular.z, fa.linear.x, fa.linear.y, fa.linear.z,
-        to_eigen(fd_without.response.acceleration);
-    EXPECT_LT(sd::relative_error_to(qdd_node, VecQ(M.fullPivLu().solve(rhs_free))), kTolerance);
+    VectorXd tau_full = VectorXd::Zero(n);
+    tau_full.tail(joints) = effort;
+    const VecQ rhs_free = sd::to_quad(tau_full) - ref::nonlinear_effects(oracle, Q, Qd);
+    EXPECT_LT(sd::relative_error_to(accelerations(fd_without), VecQ(M.fullPivLu().solve(rhs_free))), kTolerance);
 
     // The mass matrix covers the base, its six coordinates first.
     sd::MassMatrix mm;
@@ -489,7 +511,9 @@ TEST_F(FloatingBase, ASceneAndAPayloadOnAFloatingBase) {
   setBase(scene.request);
   ros::service::call(service("legs/inverse_dynamics"), scene);
   ASSERT_TRUE(scene.response.success) << scene.response.message;
-  if (robot_ == "talos") EXPECT_LT(scene.response.name.size(), names.size()) << "the arms, torso and head locked";
+  if (robot_ == "talos") {
+    EXPECT_LT(scene.response.name.size(), names.size()) << "the arms, torso and head locked";
+  }
   const sd::InverseDynamics full = call("inverse_dynamics", request(q, VectorXd::Zero(model.nv - 6), true));
   ASSERT_TRUE(full.response.success) << full.response.message;
   VectorXd expected(scene.response.name.size());
@@ -530,6 +554,61 @@ TEST_F(FloatingBase, ASceneAndAPayloadOnAFloatingBase) {
   EXPECT_LT((wrench(after.response.base_wrench) - wrench(before.response.base_wrench) - weight).norm(), 1e-12 * 9.81 * 2.0);
   EXPECT_LT(sd_test::relative_error(to_eigen(after.response.effort), to_eigen(before.response.effort)), 1e-14)
       << "a payload at the root link loads no joint";
+}
+
+// An external wrench with the contacts (a humanoid pushing, a quadruped carrying a load): the contacts
+// balance what the wrench leaves, ID(q, q̇, q̈, f_ext) = Sᵀ τ + J_cᵀ λ; forward dynamics solves the KKT
+// system with it. The wrench acts on the last link in its own axes, about its origin; the oracle's body
+// force is ^FX_Bᵀ f (the link's frame on its body).
+TEST_F(FloatingBase, ExternalWrenchesWithContactsMatchTheIndependentSolution) {
+  startBase();
+  const int n = model.nv, joints = n - 6;
+  const std::string link = model.body_names.back();
+  const sd::Frame<double>& frame = model.frames[model.frameIndex(link)];
+  const sd::ForceVector<double> f(Eigen::Vector3d(1.5, -2.0, 0.5), Eigen::Vector3d(10.0, -20.0, 30.0));  // (n; f)
+  std::vector<sd::ForceVector<Quad>> F_ext(model.nbodies(), sd::ForceVector<Quad>::Zero());
+  F_ext[frame.body] = frame.X_frame_body.applyInverse(f).cast<Quad>();
+  geometry_msgs::WrenchStamped wrench;
+  wrench.header.frame_id = link;
+  wrench.wrench.torque.x = f.angular[0];
+  wrench.wrench.torque.y = f.angular[1];
+  wrench.wrench.torque.z = f.angular[2];
+  wrench.wrench.force.x = f.linear[0];
+  wrench.wrench.force.y = f.linear[1];
+  wrench.wrench.force.z = f.linear[2];
+
+  const VectorXd q = stance(), qd = sd_test::random_vector(joints, rng);
+  const VecQ Q = configuration(q);
+  const Base base;
+  VectorXd v(n);
+  v << base.twist, qd;
+  const VecQ Qd = sd::to_quad(v), Qdd = VecQ::Zero(n);
+  sd::InverseDynamics id_srv = request(q, qd, true);
+  id_srv.request.external_wrenches = {wrench};
+  id_srv = call("inverse_dynamics", id_srv);
+  ASSERT_TRUE(id_srv.response.success) << id_srv.response.message;
+  VecQ id, lambda, tau, id_free, lambda_free, tau_free;
+  independentId(frames, kinds, Q, Qd, Qdd, id, lambda, tau, F_ext);
+  independentId(frames, kinds, Q, Qd, Qdd, id_free, lambda_free, tau_free);
+  const double tau_error = sd::relative_error_to(to_eigen(id_srv.response.effort), VecQ(tau.tail(joints)));
+  const double lambda_error = sd::relative_error_to(stacked(id_srv.response.contact_wrenches, kinds), lambda);
+  std::printf("[%s] a wrench on %s with the contacts: effort %.3g, contact wrenches %.3g (the wrench moves λ by %.3g)\n",
+              robot_.c_str(), link.c_str(), tau_error, lambda_error,
+              static_cast<double>((lambda - lambda_free).norm() / lambda_free.norm()));
+  EXPECT_LT(tau_error, kTolerance);
+  EXPECT_LT(lambda_error, kTolerance);
+  EXPECT_GT(static_cast<double>((lambda - lambda_free).norm()), 1.0) << "the wrench must reach the contacts";
+
+  const VectorXd effort = sd_test::random_vector(joints, rng, 5.0);
+  sd::ForwardDynamics fd = fdRequest(q, qd, effort);
+  fd.request.external_wrenches = {wrench};
+  fd = call("forward_dynamics", fd);
+  ASSERT_TRUE(fd.response.success) << fd.response.message;
+  MatQ M;
+  const VecQ solution = independentFd(Q, Qd, effort, M, F_ext);
+  EXPECT_LT(sd::relative_error_to(accelerations(fd), VecQ(solution.head(n))), kTolerance);
+  EXPECT_LT(sd::relative_error_to(stacked(fd.response.contact_wrenches, kinds), VecQ(solution.tail(solution.size() - n))),
+            kTolerance);
 }
 
 TEST_F(FloatingBase, BadInputsAreNamed) {
@@ -588,5 +667,7 @@ TEST_F(FloatingBase, ZStaleBaseStateIsRefusedNamingTheSource) {
   EXPECT_FALSE(srv.response.success);
   EXPECT_TRUE(contains(srv.response.message, odometry_ ? "odometry '/odom'" : "tf ('odom' to '" + root_link_ + "'"))
       << srv.response.message;
-  if (odometry_) EXPECT_TRUE(contains(srv.response.message, "older than max_state_age")) << srv.response.message;
+  if (odometry_) {
+    EXPECT_TRUE(contains(srv.response.message, "older than max_state_age")) << srv.response.message;
+  }
 }
