@@ -90,7 +90,7 @@ void JointStatePipeline::onJointStates(const ros::MessageEvent<sensor_msgs::Join
       ROS_WARN_THROTTLE(5.0, "dynamics: no computed torques for this joint state: %s", e.what());
     }
   }
-  publishCentroidalState(msg->header.stamp, robot);
+  if (store_.config().publish_centroidal_state) publishCentroidalState(msg->header.stamp, robot);
   if (published) torque_latency_us_.record((ros::Time::now() - event.getReceiptTime()).toSec() * 1e6);
   external_torques_.onJointStates(*msg, robot);
   recorder_.add(*msg);

@@ -206,6 +206,7 @@ ExternalTorqueSettings read_external_torque_settings(const ros::NodeHandle& priv
 NodeConfig read_node_config(const ros::NodeHandle& private_nh) {
   NodeConfig config;
   private_nh.param("publish_computed_torques", config.publish_computed_torques, config.publish_computed_torques);
+  private_nh.param("publish_centroidal_state", config.publish_centroidal_state, config.publish_centroidal_state);
   private_nh.param("relock_tolerance", config.relock_tolerance, config.relock_tolerance);
   private_nh.param("max_state_age", config.max_state_age, config.max_state_age);
   private_nh.param("inline_joint_states", config.inline_joint_states, config.inline_joint_states);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "node_test_utils.hpp"
+#include "spatial_dynamics/CentroidalState.h"
 
 using namespace sd_node_test;
 using Eigen::VectorXd;
@@ -89,8 +90,15 @@ TEST(Concurrency, ClientsAndJointStatesAtOnce) {
   std::atomic<long> torques_received{0};
   ros::Subscriber torques = nh.subscribe<sensor_msgs::JointState>(
       "/dynamics/computed_torques", 10000, [&](const sensor_msgs::JointState::ConstPtr&) { ++torques_received; });
+  // ~centroidal_state: one per joint_states message, none when ~publish_centroidal_state is false.
+  const bool centroidal_expected = ros::param::param("/dynamics/publish_centroidal_state", true);
+  std::atomic<long> centroidal_received{0};
+  ros::Subscriber centroidal = nh.subscribe<sd::CentroidalState>(
+      "/dynamics/centroidal_state", 10000, [&](const sd::CentroidalState::ConstPtr&) { ++centroidal_received; });
   ros::Publisher joint_states = nh.advertise<sensor_msgs::JointState>("/joint_states", 10000);
-  for (int k = 0; k < 100 && (joint_states.getNumSubscribers() == 0 || torques.getNumPublishers() == 0); ++k)
+  for (int k = 0; k < 100 && (joint_states.getNumSubscribers() == 0 || torques.getNumPublishers() == 0 ||
+                              centroidal.getNumPublishers() == 0);
+       ++k)
     ros::Duration(0.05).sleep();
 
   std::atomic<bool> clients_done{false};
@@ -118,15 +126,17 @@ TEST(Concurrency, ClientsAndJointStatesAtOnce) {
   const double seconds = (ros::WallTime::now() - start).toSec();
   clients_done = true;
   streamer.join();
-  for (int k = 0; k < 100 && torques_received < published; ++k) ros::Duration(0.05).sleep();
+  for (int k = 0; k < 100 && (torques_received < published || (centroidal_expected && centroidal_received < published)); ++k)
+    ros::Duration(0.05).sleep();
 
   for (int c = 0; c < kClients; ++c) {
     EXPECT_EQ(results[c].answered, kCallsPerClient) << "client " << c << ": " << results[c].first_problem;
     EXPECT_EQ(results[c].correct, kCallsPerClient) << "client " << c << ": " << results[c].first_problem;
   }
   EXPECT_EQ(torques_received.load(), published);
+  EXPECT_EQ(centroidal_received.load(), centroidal_expected ? published : 0L) << "~publish_centroidal_state " << centroidal_expected;
   std::printf("[concurrency] %d clients x %d calls in %.2f s (%.0f calls/s); joint_states published %ld, computed "
-              "torques received %ld\n",
+              "torques received %ld, centroidal states %ld\n",
               kClients, kCallsPerClient, seconds, kClients * kCallsPerClient / seconds, published,
-              torques_received.load());
+              torques_received.load(), centroidal_received.load());
 }

@@ -14,6 +14,8 @@
 #include <numeric>
 
 #include "node_test_utils.hpp"
+#include "spatial_dynamics/CentroidalState.h"
+#include "spatial_dynamics/algorithms/centroidal.hpp"
 #include "spatial_dynamics/simd_backend.hpp"
 
 using namespace sd_node_test;
@@ -163,6 +165,33 @@ TEST_F(NodeServices, ComputedTorquesStreamForEveryJointStatesMessage) {
     EXPECT_LE(sd_test::relative_error(to_eigen(torques.position), q), 0.0);
     EXPECT_LE(sd_test::relative_error(to_eigen(torques.velocity), qd), 0.0);
     EXPECT_LE(sd_test::relative_error(to_eigen(torques.effort), sd::nonlinear_effects(model, data, q, qd)), kTolerance);
+  }
+}
+
+// A fixed base's ~centroidal_state, one per joint_states message with its stamp, in the root link's
+// frame: the library's centre of mass, its velocity and the angular momentum about it; the linear
+// momentum m ċ.
+TEST_F(NodeServices, CentroidalStateOfAFixedBaseIsInTheRootLinkFrame) {
+  Collector<sd::CentroidalState> centroidal{nh, "/dynamics/centroidal_state"};
+  for (int k = 0; k < 100 && !centroidal.connected(); ++k) ros::Duration(0.05).sleep();
+  sd::Data<double> data(model);
+  double mass = 0;
+  for (int i = 1; i < model.nbodies(); ++i) mass += model.inertia[i].mass;
+  const auto vec = [](const geometry_msgs::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); };
+  for (int s = 0; s < 3; ++s) {
+    const VectorXd q = sd_test::random_configuration(model, rng);
+    const VectorXd qd = sd_test::random_vector(model.nv, rng);
+    publish(names, q, qd);
+    sd::CentroidalState c;
+    ASSERT_TRUE(centroidal.waitFor(ros::Time(1000 + stamp_counter_), c)) << "no centroidal state for the stamp";
+    EXPECT_EQ(c.header.frame_id, model.body_names[0]);
+    const Eigen::Vector3d com(c.center_of_mass.x, c.center_of_mass.y, c.center_of_mass.z);
+    EXPECT_LE(sd_test::relative_error(com, sd::center_of_mass(model, data, q)), kTolerance);
+    const Eigen::Vector3d c_dot = sd::center_of_mass_velocity(model, data, q, qd);
+    EXPECT_LE(sd_test::relative_error(vec(c.center_of_mass_velocity), c_dot), kTolerance);
+    EXPECT_LE(sd_test::relative_error(vec(c.linear_momentum), Eigen::Vector3d(mass * c_dot)), kTolerance);
+    const sd::ForceVector<double> h = sd::centroidal_momentum(model, data, q, qd);
+    EXPECT_LE(sd_test::relative_error(vec(c.angular_momentum), Eigen::Vector3d(h.angular.eigen())), kTolerance);
   }
 }
 

@@ -35,6 +35,7 @@ struct SceneConfig {
 
 struct NodeConfig {
   bool publish_computed_torques = true;  // ~publish_computed_torques
+  bool publish_centroidal_state = true;  // ~publish_centroidal_state
   double relock_tolerance = 1e-6;        // ~relock_tolerance: a locked joint that moves further rebuilds its scene
   double max_state_age = 1.0;            // ~max_state_age [s]
   bool coupled_mimic_joints = false;     // ~mimic_joints: 'coupled' (true) or 'independent'
