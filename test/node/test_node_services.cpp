@@ -384,6 +384,7 @@ TEST_F(NodeServices, DiagnosticsShowTheSimdBackend) {
   std::lock_guard<std::mutex> lock(mutex);
   EXPECT_EQ(shown, sd::simd_backend());
   const char* forced = std::getenv("SPATIAL_DYNAMICS_SIMD");
-  if ((forced == nullptr || *forced == '\0') && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+  if ((forced == nullptr || *forced == '\0') && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
     EXPECT_EQ(shown, "avx2_fma");
+  }
 }
